@@ -1,0 +1,45 @@
+#pragma once
+/// Whitespace-separated tokens of a text file with their line numbers, for the
+/// line-oriented mesh formats (MEDIT, TetGen). `#` starts a comment running to
+/// the end of the line. Every parse failure throws InputError naming the file
+/// and the line of the offending token (or the last line at end of file).
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+namespace tcb {
+
+class TokenReader {
+ public:
+  TokenReader(std::string file_name, std::string text);
+
+  bool at_end();
+  /// The next token without consuming it; empty at end of file.
+  std::string_view peek();
+  int peek_line();
+  std::string_view next(const char* what);  // throws at end of file, naming `what`
+  /// Parses the next token fully as a finite double / an integer in range.
+  double next_double(const char* what);
+  std::int64_t next_int(const char* what, std::int64_t min_value, std::int64_t max_value);
+  /// Consumes tokens up to the end of the current line (optional trailing fields).
+  void skip_rest_of_line();
+
+  int line() const { return m_line; }
+  [[noreturn]] void fail(int line, const std::string& problem) const;
+  const std::string& file_name() const { return m_file_name; }
+
+ private:
+  void skip_space();
+  std::string m_file_name;
+  std::string m_text;
+  std::size_t m_pos = 0;
+  int m_line = 1;  // line of the character at m_pos
+  int m_last_token_line = 1;  // where an error at end of file is reported
+};
+
+/// True when the token reads as a number (so a section of unknown layout can be
+/// skipped up to the next keyword).
+bool looks_numeric(std::string_view token);
+
+}  // namespace tcb
