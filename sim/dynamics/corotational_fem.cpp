@@ -1,0 +1,163 @@
+#include "sim/dynamics/corotational_fem.hpp"
+
+#include <Eigen/IterativeLinearSolvers>
+#include <Eigen/LU>
+
+#include <algorithm>
+
+#include "sim/dynamics/rotation_extraction.hpp"
+
+namespace tcb {
+
+CorotationalFem::CorotationalFem(const TetMesh& mesh, const std::vector<Vec3>& rest_m, const Material& material)
+    : m_material(material), m_mass_kg(lumped_masses_kg(mesh, rest_m, material.density_kg_per_m3)) {
+  const double lambda = lame_lambda_pa(material), mu = lame_mu_pa(material);
+  std::vector<char> degenerate(mesh.tet_count(), 0);
+  for (auto id : mesh.degenerate_tet_ids) degenerate[id] = 1;
+  m_elements.reserve(mesh.tet_count());
+  for (std::size_t i = 0; i < mesh.tet_count(); ++i) {
+    if (degenerate[i]) continue;
+    Element e;
+    e.v = mesh.tets[i];
+    for (int k = 0; k < 4; ++k) e.rest_m[k] = rest_m[e.v[k]];
+    Eigen::Matrix3d dm;
+    dm << e.rest_m[1] - e.rest_m[0], e.rest_m[2] - e.rest_m[0], e.rest_m[3] - e.rest_m[0];
+    const double volume = dm.determinant() / 6.0;
+    if (!(volume > 0.0)) continue;  // flat in floating point although not exactly: inert
+    e.rest_edges_inverse = dm.inverse();
+    // Shape-function gradients: rows of Dm^-1 for vertices 1..3; vertex 0 the negative sum.
+    std::array<Vec3, 4> g;
+    for (int k = 0; k < 3; ++k) g[k + 1] = e.rest_edges_inverse.row(k).transpose();
+    g[0] = -(g[1] + g[2] + g[3]);
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b)
+        e.stiffness.block<3, 3>(3 * a, 3 * b) =
+            volume * (lambda * g[a] * g[b].transpose() + mu * g[b] * g[a].transpose() +
+                      mu * g[a].dot(g[b]) * Eigen::Matrix3d::Identity());
+    e.rotation = Eigen::Quaterniond::Identity();
+    m_elements.push_back(e);
+  }
+  build_pattern(mesh.vertex_count());
+}
+
+void CorotationalFem::build_pattern(std::size_t n) {
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(m_elements.size() * 144 + 3 * n);
+  for (const Element& e : m_elements)
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b)
+        for (int r = 0; r < 3; ++r)
+          for (int c = 0; c < 3; ++c) entries.emplace_back(3 * e.v[a] + r, 3 * e.v[b] + c, 0.0);
+  for (std::size_t i = 0; i < 3 * n; ++i) entries.emplace_back(i, i, 0.0);
+  m_system.resize(3 * n, 3 * n);
+  m_system.setFromTriplets(entries.begin(), entries.end());
+  m_system.makeCompressed();
+
+  const int* outer = m_system.outerIndexPtr();
+  const int* inner = m_system.innerIndexPtr();
+  const auto slot = [&](int row, int col) {
+    const int* found = std::lower_bound(inner + outer[row], inner + outer[row + 1], col);
+    return static_cast<int>(found - inner);
+  };
+  m_block_slots.resize(m_elements.size());
+  for (std::size_t i = 0; i < m_elements.size(); ++i)
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b)
+        for (int r = 0; r < 3; ++r)
+          m_block_slots[i][(a * 4 + b) * 3 + r] = slot(3 * m_elements[i].v[a] + r, 3 * m_elements[i].v[b]);
+  m_diagonal_slots.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    for (int r = 0; r < 3; ++r) m_diagonal_slots[i][r] = slot(3 * i + r, 3 * i + r);
+  m_rhs.resize(3 * n);
+  m_velocity.resize(3 * n);
+}
+
+Eigen::Matrix3d CorotationalFem::deformation_gradient(const Element& e, std::span<const Vec3> x) const {
+  Eigen::Matrix3d ds;
+  ds << x[e.v[1]] - x[e.v[0]], x[e.v[2]] - x[e.v[0]], x[e.v[3]] - x[e.v[0]];
+  return ds * e.rest_edges_inverse;
+}
+
+Eigen::Matrix3d CorotationalFem::rotation_of(const Element& e, const Eigen::Matrix3d& f) {
+  Eigen::Quaterniond q = e.rotation;
+  extract_rotation(f, q);
+  return q.toRotationMatrix();
+}
+
+void CorotationalFem::elastic_forces(std::span<const Vec3> x, std::span<Vec3> f) const {
+  std::fill(f.begin(), f.end(), Vec3::Zero());
+  for (const Element& e : m_elements) {
+    const Eigen::Matrix3d r = rotation_of(e, deformation_gradient(e, x));
+    Eigen::Matrix<double, 12, 1> u;
+    for (int k = 0; k < 4; ++k) u.segment<3>(3 * k) = r.transpose() * x[e.v[k]] - e.rest_m[k];
+    const Eigen::Matrix<double, 12, 1> local = e.stiffness * u;
+    for (int k = 0; k < 4; ++k) f[e.v[k]] -= r * local.segment<3>(3 * k);
+  }
+}
+
+double CorotationalFem::elastic_energy_j(std::span<const Vec3> x) const {
+  double energy = 0.0;
+  for (const Element& e : m_elements) {
+    const Eigen::Matrix3d r = rotation_of(e, deformation_gradient(e, x));
+    Eigen::Matrix<double, 12, 1> u;
+    for (int k = 0; k < 4; ++k) u.segment<3>(3 * k) = r.transpose() * x[e.v[k]] - e.rest_m[k];
+    energy += 0.5 * u.dot(e.stiffness * u);
+  }
+  return energy;
+}
+
+void CorotationalFem::step(std::span<Vec3> x, std::span<Vec3> v, std::span<const Vec3> f_ext, double dt) {
+  const std::size_t n = x.size();
+  const double stiffness_factor = dt * m_material.damping_stiffness_s + dt * dt;
+  const double mass_factor = 1.0 + dt * m_material.damping_mass_per_s;
+  double* values = m_system.valuePtr();
+  std::fill(values, values + m_system.nonZeros(), 0.0);
+
+  // rhs = M v + dt (f_el(x) + f_ext); f_el accumulated per element below.
+  for (std::size_t i = 0; i < n; ++i) m_rhs.segment<3>(3 * i) = dt * f_ext[i];
+  for (std::size_t ei = 0; ei < m_elements.size(); ++ei) {
+    Element& e = m_elements[ei];
+    extract_rotation(deformation_gradient(e, x), e.rotation);
+    const Eigen::Matrix3d r = e.rotation.toRotationMatrix();
+    Eigen::Matrix<double, 12, 1> u;
+    for (int k = 0; k < 4; ++k) u.segment<3>(3 * k) = r.transpose() * x[e.v[k]] - e.rest_m[k];
+    const Eigen::Matrix<double, 12, 1> local = e.stiffness * u;
+    for (int k = 0; k < 4; ++k) m_rhs.segment<3>(3 * e.v[k]) -= dt * (r * local.segment<3>(3 * k));
+    const auto& slots = m_block_slots[ei];
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b) {
+        const Eigen::Matrix3d block = stiffness_factor * (r * e.stiffness.block<3, 3>(3 * a, 3 * b) * r.transpose());
+        for (int row = 0; row < 3; ++row) {
+          double* dst = values + slots[(a * 4 + b) * 3 + row];
+          dst[0] += block(row, 0);
+          dst[1] += block(row, 1);
+          dst[2] += block(row, 2);
+        }
+      }
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const double m = m_mass_kg[i];
+    for (int r = 0; r < 3; ++r) {
+      // A massless vertex is pinned: the row becomes v = 0.
+      values[m_diagonal_slots[i][r]] += m > 0.0 ? mass_factor * m : 1.0;
+      if (m == 0.0) m_rhs[3 * i + r] = 0.0;
+    }
+    if (m > 0.0) m_rhs.segment<3>(3 * i) += m * v[i];
+    m_velocity.segment<3>(3 * i) = m > 0.0 ? v[i] : Vec3::Zero();
+  }
+
+  Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper, Eigen::DiagonalPreconditioner<double>> cg;
+  cg.setTolerance(m_material.cg_tolerance);
+  cg.setMaxIterations(m_material.cg_max_iterations);
+  cg.compute(m_system);
+  m_velocity = cg.solveWithGuess(m_rhs, m_velocity);
+  m_last_iterations = static_cast<int>(cg.iterations());
+  m_last_converged = cg.info() == Eigen::Success;
+
+  for (std::size_t i = 0; i < n; ++i) {
+    v[i] = m_velocity.segment<3>(3 * i);
+    x[i] += dt * v[i];
+  }
+}
+
+}  // namespace tcb

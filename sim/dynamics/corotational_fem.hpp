@@ -1,0 +1,63 @@
+#pragma once
+/// Corotational linear FEM on linear tets (Mueller & Gross, "Interactive
+/// Virtual Materials", GI 2004), the framework of seed 000.
+///
+/// Per element e with rest positions x0_e and linear-elastic stiffness K_e
+/// (12x12, Lame lambda/mu, constant strain), the rotation R_e is extracted from
+/// the deformation gradient (rotation_extraction.hpp) and the elastic force is
+///   f_e = -R_e K_e (R_e^T x_e - x0_e),
+/// which vanishes for any rigid motion of the element. Time integration is
+/// linearised implicit Euler with Rayleigh damping C = alpha M + beta K:
+///   (M + dt C + dt^2 K) v' = M v + dt (f_el(x) + f_ext),   x' = x + dt v'
+/// with K = sum_e R_e K_e R_e^T assembled into a sparse matrix whose pattern is
+/// built once, solved by Jacobi-preconditioned conjugate gradients warm-started
+/// from v. Degenerate (flat) tets get no stiffness and no mass.
+/// Cost per step: O(T) assembly + CG iterations over a matrix with ~45 nonzeros
+/// per row.
+
+#include <Eigen/Geometry>
+#include <Eigen/SparseCore>
+
+#include "sim/dynamics/elastic_model.hpp"
+
+namespace tcb {
+
+class CorotationalFem final : public ElasticModel {
+ public:
+  CorotationalFem(const TetMesh& mesh, const std::vector<Vec3>& rest_m, const Material& material);
+
+  void step(std::span<Vec3> x_m, std::span<Vec3> v_m_per_s, std::span<const Vec3> f_ext_n, double dt_s) override;
+  double elastic_energy_j(std::span<const Vec3> x_m) const override;
+  void elastic_forces(std::span<const Vec3> x_m, std::span<Vec3> f_n) const override;
+  const std::vector<double>& vertex_masses_kg() const override { return m_mass_kg; }
+  int last_solver_iterations() const override { return m_last_iterations; }
+  bool last_solve_converged() const { return m_last_converged; }
+
+ private:
+  struct Element {
+    Tet v;
+    Eigen::Matrix3d rest_edges_inverse;    // Dm^-1 with Dm = [x1-x0, x2-x0, x3-x0]
+    Eigen::Matrix<double, 12, 12> stiffness;  // K_e, N/m
+    std::array<Vec3, 4> rest_m;
+    Eigen::Quaterniond rotation;           // warm start for the next extraction
+  };
+  using SparseMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor, int>;
+
+  Eigen::Matrix3d deformation_gradient(const Element& e, std::span<const Vec3> x) const;
+  static Eigen::Matrix3d rotation_of(const Element& e, const Eigen::Matrix3d& f);
+  void build_pattern(std::size_t vertex_count);
+
+  Material m_material;
+  std::vector<Element> m_elements;
+  std::vector<double> m_mass_kg;
+  SparseMatrix m_system;
+  // For each element, the value offsets of its 16 3x3 blocks: entry
+  // (i*4 + j)*3 + r is where row 3*v_i + r, column 3*v_j starts.
+  std::vector<std::array<int, 48>> m_block_slots;
+  std::vector<std::array<int, 3>> m_diagonal_slots;
+  Eigen::VectorXd m_rhs, m_velocity;
+  int m_last_iterations = 0;
+  bool m_last_converged = true;
+};
+
+}  // namespace tcb

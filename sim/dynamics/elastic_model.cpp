@@ -1,0 +1,29 @@
+#include "sim/dynamics/elastic_model.hpp"
+
+#include <algorithm>
+
+#include "sim/dynamics/corotational_fem.hpp"
+#include "sim/dynamics/mass_spring.hpp"
+
+namespace tcb {
+
+std::vector<double> lumped_masses_kg(const TetMesh& mesh, const std::vector<Vec3>& x, double density) {
+  std::vector<double> m(mesh.vertex_count(), 0.0);
+  std::vector<char> degenerate(mesh.tet_count(), 0);
+  for (auto id : mesh.degenerate_tet_ids) degenerate[id] = 1;
+  for (std::size_t i = 0; i < mesh.tet_count(); ++i) {
+    if (degenerate[i]) continue;
+    const Tet& t = mesh.tets[i];
+    const double quarter = density * std::abs(signed_volume(x[t[0]], x[t[1]], x[t[2]], x[t[3]])) / 4.0;
+    for (int k = 0; k < 4; ++k) m[t[k]] += quarter;
+  }
+  return m;
+}
+
+std::unique_ptr<ElasticModel> make_elastic_model(const TetMesh& mesh, const std::vector<Vec3>& rest_m,
+                                                 const Material& material) {
+  if (material.model == MaterialModel::MassSpring) return std::make_unique<MassSpring>(mesh, rest_m, material);
+  return std::make_unique<CorotationalFem>(mesh, rest_m, material);
+}
+
+}  // namespace tcb

@@ -1,0 +1,79 @@
+#include "sim/world/scene.hpp"
+
+#include <fmt/format.h>
+
+#include <map>
+
+#include "sim/io/input_error.hpp"
+#include "sim/mesh/load_mesh.hpp"
+
+namespace tcb {
+namespace {
+
+std::shared_ptr<const TetMesh> load_cached(const ObjectDesc& object, const SceneDesc& scene,
+                                           std::map<std::string, std::shared_ptr<const TetMesh>>& cache) {
+  const std::string key = (object.base_dir / object.mesh).lexically_normal().string();
+  if (auto it = cache.find(key); it != cache.end()) return it->second;
+  try {
+    auto mesh = std::make_shared<const TetMesh>(load_mesh(object.mesh, object.base_dir));
+    cache.emplace(key, mesh);
+    return mesh;
+  } catch (const InputError& e) {
+    if (e.line() > 0 || scene.path.empty()) throw;  // the mesh file's own line says more
+    throw InputError(scene.path.string(), object.source_line, "object '" + object.name + "': " + e.what());
+  }
+}
+
+Body make_body(const std::string& name, const ObjectDesc& object, std::shared_ptr<const TetMesh> mesh,
+               std::vector<Vec3> x) {
+  Body body;
+  body.name = name;
+  body.mesh = std::move(mesh);
+  body.v_m_per_s.assign(x.size(), object.velocity_m_per_s);
+  body.contact_force_n.assign(x.size(), Vec3::Zero());
+  body.mass_kg = lumped_masses_kg(*body.mesh, x, object.material.density_kg_per_m3);
+  body.material = object.material;
+  body.passive = object.passive;
+  body.self_collision = object.self_collision;
+  if (!object.passive) body.model = make_elastic_model(*body.mesh, x, object.material);
+  else body.v_m_per_s.assign(x.size(), Vec3::Zero());
+  body.x_m = std::move(x);
+  return body;
+}
+
+}  // namespace
+
+World build_world(const SceneDesc& scene) {
+  World world;
+  world.gravity_m_per_s2 = scene.gravity_m_per_s2;
+  world.ground = scene.ground;
+  std::map<std::string, std::shared_ptr<const TetMesh>> cache;
+  for (const ObjectDesc& object : scene.objects) {
+    const auto mesh = load_cached(object, scene, cache);
+    std::vector<Vec3> scaled(mesh->positions_m.size());
+    for (std::size_t i = 0; i < scaled.size(); ++i) scaled[i] = object.scale * mesh->positions_m[i];
+    if (object.stack.count <= 1) {
+      for (Vec3& p : scaled) p += object.position_m;
+      world.bodies.push_back(make_body(object.name, object, mesh, std::move(scaled)));
+      continue;
+    }
+    const int axis = object.stack.axis;
+    double lowest = scaled.empty() ? 0.0 : scaled[0][axis], highest = lowest;
+    for (const Vec3& p : scaled) {
+      lowest = std::min(lowest, p[axis]);
+      highest = std::max(highest, p[axis]);
+    }
+    for (Vec3& p : scaled) p[axis] -= lowest;  // the lowest coordinate becomes exactly 0
+    const double step = (highest - lowest) + object.stack.gap_m;
+    Vec3 offset = object.position_m;
+    for (int copy = 0; copy < object.stack.count; ++copy) {
+      std::vector<Vec3> x(scaled);
+      for (Vec3& p : x) p += offset;
+      world.bodies.push_back(make_body(fmt::format("{}_{:02d}", object.name, copy), object, mesh, std::move(x)));
+      offset[axis] += step;
+    }
+  }
+  return world;
+}
+
+}  // namespace tcb

@@ -1,0 +1,63 @@
+#include "sim/world/world.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace tcb {
+
+void World::step(double dt_s) {
+  for (Body& body : bodies) {
+    if (body.passive || !body.model) continue;
+    body.external_force_n.resize(body.x_m.size());
+    for (std::size_t i = 0; i < body.x_m.size(); ++i)
+      body.external_force_n[i] = body.mass_kg[i] * gravity_m_per_s2 + body.contact_force_n[i];
+    body.model->step(body.x_m, body.v_m_per_s, body.external_force_n, dt_s);
+    if (ground) apply_ground(*ground, body.x_m, body.v_m_per_s);
+  }
+  for (Body& body : bodies) std::fill(body.contact_force_n.begin(), body.contact_force_n.end(), Vec3::Zero());
+  time_s += dt_s;
+  ++step_index;
+}
+
+double World::kinetic_energy_j() const {
+  double e = 0.0;
+  for (const Body& b : bodies)
+    if (!b.passive)
+      for (std::size_t i = 0; i < b.x_m.size(); ++i) e += 0.5 * b.mass_kg[i] * b.v_m_per_s[i].squaredNorm();
+  return e;
+}
+
+double World::elastic_energy_j() const {
+  double e = 0.0;
+  for (const Body& b : bodies)
+    if (!b.passive && b.model) e += b.model->elastic_energy_j(b.x_m);
+  return e;
+}
+
+double World::gravity_potential_j() const {
+  double e = 0.0;
+  for (const Body& b : bodies)
+    if (!b.passive)
+      for (std::size_t i = 0; i < b.x_m.size(); ++i) e -= b.mass_kg[i] * gravity_m_per_s2.dot(b.x_m[i]);
+  return e;
+}
+
+double World::max_speed_m_per_s() const {
+  double max_speed = 0.0;
+  for (const Body& b : bodies) {
+    if (b.passive) continue;
+    for (std::size_t i = 0; i < b.x_m.size(); ++i) {
+      if (!b.x_m[i].allFinite() || !b.v_m_per_s[i].allFinite()) return std::numeric_limits<double>::quiet_NaN();
+      max_speed = std::max(max_speed, b.v_m_per_s[i].norm());
+    }
+  }
+  return max_speed;
+}
+
+std::size_t World::vertex_count() const {
+  std::size_t n = 0;
+  for (const Body& b : bodies) n += b.x_m.size();
+  return n;
+}
+
+}  // namespace tcb

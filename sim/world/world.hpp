@@ -1,0 +1,54 @@
+#pragma once
+/// The simulated world: deformable and passive bodies, gravity, an optional
+/// ground. It owns all simulation state; collision handlers read positions and
+/// add forces into Body::contact_force_n before World::step().
+///
+/// One step: for each dynamic body, f_ext = m g + contact forces, the body's
+/// elastic model advances it, then the ground projects it. Passive bodies are
+/// never integrated (their positions stay as built) but still collide.
+/// Contact forces are cleared at the end of every step. Units: SI.
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sim/dynamics/elastic_model.hpp"
+#include "sim/world/ground.hpp"
+
+namespace tcb {
+
+struct Body {
+  std::string name;
+  std::shared_ptr<const TetMesh> mesh;  ///< topology; shared by copies of one mesh
+  std::vector<Vec3> x_m;                ///< current positions
+  std::vector<Vec3> v_m_per_s;
+  std::vector<Vec3> contact_force_n;    ///< accumulated by the handler, cleared each step
+  std::vector<double> mass_kg;          ///< lumped
+  Material material;
+  bool passive = false;
+  bool self_collision = false;
+  std::unique_ptr<ElasticModel> model;  ///< null for passive bodies
+  std::vector<Vec3> external_force_n;   ///< scratch of step()
+};
+
+class World {
+ public:
+  std::vector<Body> bodies;
+  Vec3 gravity_m_per_s2 = Vec3(0.0, -9.81, 0.0);
+  std::optional<GroundPlane> ground;
+  double time_s = 0.0;
+  std::int64_t step_index = 0;
+
+  void step(double dt_s);
+
+  double kinetic_energy_j() const;          ///< of the dynamic bodies
+  double elastic_energy_j() const;          ///< of the dynamic bodies
+  double gravity_potential_j() const;       ///< -m g . x over dynamic bodies
+  /// Largest vertex speed of the dynamic bodies; NaN if any state is not finite.
+  double max_speed_m_per_s() const;
+  std::size_t vertex_count() const;
+};
+
+}  // namespace tcb

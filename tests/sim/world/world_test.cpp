@@ -1,0 +1,161 @@
+// The world: a cube settles on the ground and stays; passive bodies stay put;
+// stacks touch exactly; ground friction; stability at the extremes.
+#include <catch2/catch.hpp>
+
+#include "sim/world/scene.hpp"
+
+using namespace tcb;
+
+namespace {
+
+SceneDesc cube_on_ground(double size_m, double youngs_pa, double dt_s, MaterialModel model, Integrator integrator) {
+  SceneDesc scene;
+  scene.dt_s = dt_s;
+  scene.ground = GroundPlane{0.0, 0.5};
+  ObjectDesc cube;
+  cube.name = "cube";
+  cube.mesh = "box:size=" + std::to_string(size_m) + "x" + std::to_string(size_m) + "x" + std::to_string(size_m) +
+              ",cells=3x3x3";
+  cube.position_m = Vec3(0.0, size_m / 2.0, 0.0);  // resting on the ground
+  cube.material.model = model;
+  cube.material.integrator = integrator;
+  cube.material.youngs_modulus_pa = youngs_pa;
+  cube.material.damping_mass_per_s = 1.0;
+  scene.objects.push_back(cube);
+  return scene;
+}
+
+Vec3 centre(const Body& b) {
+  Vec3 c = Vec3::Zero();
+  double m = 0.0;
+  for (std::size_t i = 0; i < b.x_m.size(); ++i) {
+    c += b.mass_kg[i] * b.x_m[i];
+    m += b.mass_kg[i];
+  }
+  return c / m;
+}
+
+double lowest_y(const Body& b) {
+  double y = b.x_m[0].y();
+  for (const Vec3& p : b.x_m) y = std::min(y, p.y());
+  return y;
+}
+
+}  // namespace
+
+TEST_CASE("a cube resting on the ground settles and stays for 1000 steps", "[world]") {
+  const double size = 0.1;
+  World world = build_world(cube_on_ground(size, 1e5, 1e-3, MaterialModel::CorotationalFem, Integrator::ImplicitEuler));
+  for (int s = 0; s < 300; ++s) world.step(1e-3);  // settle under its own weight
+  const Vec3 settled = centre(world.bodies[0]);
+  for (int s = 0; s < 1000; ++s) {
+    world.step(1e-3);
+    const Vec3 c = centre(world.bodies[0]);
+    REQUIRE((c - settled).norm() < 1e-3 * size);
+    REQUIRE(lowest_y(world.bodies[0]) >= 0.0);
+  }
+  CHECK(world.max_speed_m_per_s() < 1e-3);
+  CHECK(settled.y() < size / 2.0);         // it sagged a little under gravity
+  CHECK(settled.y() > 0.45 * size);        // but not much: E = 1e5 Pa
+}
+
+TEST_CASE("passive bodies are not integrated", "[world]") {
+  SceneDesc scene;
+  ObjectDesc wall;
+  wall.name = "wall";
+  wall.mesh = "box:size=1x1x1,cells=1x1x1";
+  wall.passive = true;
+  wall.velocity_m_per_s = Vec3(1, 2, 3);
+  scene.objects.push_back(wall);
+  World world = build_world(scene);
+  REQUIRE(world.bodies[0].model == nullptr);
+  const std::vector<Vec3> before = world.bodies[0].x_m;
+  for (int s = 0; s < 10; ++s) world.step(1e-2);
+  CHECK(world.bodies[0].x_m == before);
+  CHECK(world.kinetic_energy_j() == 0.0);
+}
+
+TEST_CASE("stacked copies touch exactly, face on face", "[world]") {
+  SceneDesc scene;
+  ObjectDesc plate;
+  plate.name = "plate";
+  plate.mesh = "box:size=0.3x0.0137x0.3,cells=3x1x3";  // a thickness with no exact binary form
+  plate.position_m = Vec3(0.1, 0.0123, -0.2);
+  plate.stack.count = 20;
+  scene.objects.push_back(plate);
+  const World world = build_world(scene);
+  REQUIRE(world.bodies.size() == 20);
+  CHECK(world.bodies[0].name == "plate_00");
+  CHECK(world.bodies[19].name == "plate_19");
+  for (std::size_t i = 0; i + 1 < world.bodies.size(); ++i) {
+    double top = -1e9, bottom = 1e9;
+    for (const Vec3& p : world.bodies[i].x_m) top = std::max(top, p.y());
+    for (const Vec3& p : world.bodies[i + 1].x_m) bottom = std::min(bottom, p.y());
+    REQUIRE(top == bottom);  // bit for bit
+    // and every top vertex of plate i coincides with a bottom vertex of plate i+1
+    int coincident = 0;
+    for (const Vec3& p : world.bodies[i].x_m)
+      for (const Vec3& q : world.bodies[i + 1].x_m) coincident += p == q;
+    REQUIRE(coincident == 16);
+  }
+  CHECK(world.bodies[0].x_m[0].y() == 0.0123);
+}
+
+TEST_CASE("ground friction stops a sliding block; without friction it slides", "[world]") {
+  for (double mu : {0.0, 0.8}) {
+    SceneDesc scene = cube_on_ground(0.1, 1e5, 1e-3, MaterialModel::CorotationalFem, Integrator::ImplicitEuler);
+    scene.ground->friction = mu;
+    scene.objects[0].velocity_m_per_s = Vec3(1.0, 0.0, 0.0);
+    scene.objects[0].material.damping_mass_per_s = 0.0;
+    World world = build_world(scene);
+    for (int s = 0; s < 500; ++s) world.step(1e-3);
+    const double vx = world.bodies[0].v_m_per_s[0].x();
+    if (mu == 0.0)
+      CHECK(vx > 0.9);
+    else
+      CHECK(std::abs(vx) < 1e-3);  // mu g t = 3.9 m/s of braking available
+  }
+}
+
+TEST_CASE("dynamics stay finite at the extremes", "[world][extremes]") {
+  struct Case {
+    const char* name;
+    double size_m, youngs_pa, dt_s;
+    MaterialModel model;
+    Integrator integrator;
+  };
+  const Case cases[] = {
+      {"tiny 1 mm cube", 1e-3, 1e5, 1e-4, MaterialModel::CorotationalFem, Integrator::ImplicitEuler},
+      {"huge 100 m cube", 1e2, 1e7, 1e-2, MaterialModel::CorotationalFem, Integrator::ImplicitEuler},
+      {"stiff 1 GPa", 0.1, 1e9, 1e-3, MaterialModel::CorotationalFem, Integrator::ImplicitEuler},
+      {"soft 100 Pa", 0.1, 1e2, 1e-3, MaterialModel::CorotationalFem, Integrator::ImplicitEuler},
+      {"small step 1e-5 s", 0.1, 1e5, 1e-5, MaterialModel::CorotationalFem, Integrator::ImplicitEuler},
+      {"large step 1e-2 s", 0.1, 1e5, 1e-2, MaterialModel::CorotationalFem, Integrator::ImplicitEuler},
+      {"mass-spring Euler-Cromer", 0.1, 1e4, 1e-4, MaterialModel::MassSpring, Integrator::EulerCromer},
+      {"mass-spring Verlet", 0.1, 1e4, 1e-4, MaterialModel::MassSpring, Integrator::VelocityVerlet},
+  };
+  for (const Case& c : cases) {
+    INFO(c.name);
+    SceneDesc scene = cube_on_ground(c.size_m, c.youngs_pa, c.dt_s, c.model, c.integrator);
+    scene.objects[0].position_m.y() += c.size_m;  // dropped from one size up
+    World world = build_world(scene);
+    for (int s = 0; s < 300; ++s) world.step(c.dt_s);
+    REQUIRE(std::isfinite(world.max_speed_m_per_s()));
+    CHECK(lowest_y(world.bodies[0]) >= 0.0);
+    CHECK(centre(world.bodies[0]).y() > 0.0);
+  }
+}
+
+TEST_CASE("a heavy body on a light one: 1000:1 mass ratio stays finite", "[world][extremes]") {
+  SceneDesc scene = cube_on_ground(0.1, 1e5, 1e-3, MaterialModel::CorotationalFem, Integrator::ImplicitEuler);
+  ObjectDesc heavy = scene.objects[0];
+  heavy.name = "heavy";
+  heavy.material.density_kg_per_m3 = 1.0e6;
+  heavy.position_m = Vec3(0.5, 0.05, 0.0);
+  scene.objects.push_back(heavy);
+  World world = build_world(scene);
+  const double ratio = world.bodies[1].mass_kg[0] / world.bodies[0].mass_kg[0];
+  CHECK(ratio == Approx(1000.0));
+  for (int s = 0; s < 300; ++s) world.step(1e-3);
+  CHECK(std::isfinite(world.max_speed_m_per_s()));
+}
