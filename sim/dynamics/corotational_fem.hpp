@@ -31,7 +31,7 @@ class CorotationalFem final : public ElasticModel {
   void elastic_forces(std::span<const Vec3> x_m, std::span<Vec3> f_n) const override;
   const std::vector<double>& vertex_masses_kg() const override { return m_mass_kg; }
   int last_solver_iterations() const override { return m_last_iterations; }
-  bool last_solve_converged() const { return m_last_converged; }
+  bool last_solve_converged() const override { return m_last_converged; }
 
  private:
   struct Element {

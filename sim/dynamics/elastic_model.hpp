@@ -28,6 +28,8 @@ class ElasticModel {
   virtual const std::vector<double>& vertex_masses_kg() const = 0;
   /// Iterations of the last linear solve (0 for explicit models).
   virtual int last_solver_iterations() const { return 0; }
+  /// False when the last linear solve stopped at its iteration limit.
+  virtual bool last_solve_converged() const { return true; }
 };
 
 /// Lumped masses: each non-degenerate tet gives a quarter of density * volume

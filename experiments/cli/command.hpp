@@ -1,0 +1,23 @@
+#pragma once
+// One subcommand of tcbench: registers its options on a CLI11 sub-app, and
+// executes once parsing chose it.
+
+#include <CLI/CLI.hpp>
+
+#include <memory>
+
+namespace tcb::cli {
+
+class Command {
+ public:
+  virtual ~Command() = default;
+  virtual int execute() = 0;
+  CLI::App* app = nullptr;
+};
+
+std::unique_ptr<Command> make_run_command(CLI::App& parent);
+std::unique_ptr<Command> make_list_command(CLI::App& parent);
+std::unique_ptr<Command> make_mesh_command(CLI::App& parent);
+std::unique_ptr<Command> make_reproduce_command(CLI::App& parent);
+
+}  // namespace tcb::cli

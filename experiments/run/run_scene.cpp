@@ -1,0 +1,183 @@
+#include "experiments/run/run_scene.hpp"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <cmath>
+
+#include "experiments/metrics/distribution.hpp"
+#include "experiments/results/steps_csv.hpp"
+#include "experiments/run/provenance.hpp"
+#include "sim/io/atomic_file.hpp"
+#include "sim/io/input_error.hpp"
+#include "sim/mesh/vtu_writer.hpp"
+
+namespace tcb {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using Json = nlohmann::ordered_json;
+
+double ms_since(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+Json distribution_json(const std::vector<double>& values) {
+  if (values.empty()) return nullptr;
+  const Distribution d = summarize(values);
+  return Json{{"mean", d.mean}, {"p50", d.p50}, {"p95", d.p95}, {"p99", d.p99}, {"max", d.max}};
+}
+
+// All bodies of the world as one VTU frame, for ParaView.
+void write_frame(const World& world, const std::filesystem::path& path) {
+  std::vector<Vec3> x, v;
+  std::vector<Tet> tets;
+  for (const Body& b : world.bodies) {
+    const auto offset = static_cast<std::int32_t>(x.size());
+    x.insert(x.end(), b.x_m.begin(), b.x_m.end());
+    v.insert(v.end(), b.v_m_per_s.begin(), b.v_m_per_s.end());
+    for (Tet t : b.mesh->tets) {
+      for (auto& i : t) i += offset;
+      tets.push_back(t);
+    }
+  }
+  write_vtu(path, x, tets, {{"velocity_m_per_s", &v}});
+}
+
+Json scene_json(const SceneDesc& scene, const World& world) {
+  Json objects = Json::array();
+  for (const Body& b : world.bodies) {
+    objects.push_back({{"name", b.name},
+                       {"vertices", b.x_m.size()},
+                       {"tets", b.mesh->tet_count()},
+                       {"passive", b.passive},
+                       {"model", b.passive ? "none" : to_string(b.material.model)},
+                       {"integrator", b.passive ? "none" : to_string(b.material.integrator)}});
+  }
+  return Json{{"name", scene.name},
+              {"file", scene.path.string()},
+              {"ground", scene.ground.has_value()},
+              {"objects", objects}};
+}
+
+}  // namespace
+
+std::vector<std::pair<std::string, std::string>> available_methods() {
+  return {{"none", "no collision handling: objects pass through each other (dynamics and ground only)"}};
+}
+
+RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
+  bool known = false;
+  std::string names;
+  for (const auto& [name, description] : available_methods()) {
+    known |= name == options.method;
+    names += (names.empty() ? "" : ", ") + name;
+  }
+  if (!known) throw InputError("--method", 0, "unknown method '" + options.method + "' (available: " + names + ")");
+  const std::int64_t steps_total = options.steps.value_or(scene.steps);
+  if (steps_total < 0) throw InputError("--steps", 0, "must not be negative");
+
+  // Everything that can fail on bad input happens before the directory exists.
+  World world = build_world(scene);
+  std::filesystem::create_directories(options.out_dir);
+  const std::string started_at = utc_timestamp();
+  const auto run_start = Clock::now();
+
+  StepsCsv csv(options.out_dir / "steps.csv");
+  std::vector<double> dynamics_ms;
+  std::vector<double> solver_iterations;
+  std::int64_t unconverged_steps = 0, nan_steps = 0;
+  std::vector<PvdFrame> frames;
+  RunOutcome outcome{"ok", "", 0, 0.0};
+  dynamics_ms.reserve(steps_total);
+
+  const auto record = [&](std::int64_t step) {
+    if (options.record_every <= 0 || step % options.record_every != 0) return;
+    std::filesystem::create_directories(options.out_dir / "frames");
+    const std::string name = fmt::format("frames/frame_{:06d}.vtu", step);
+    write_frame(world, options.out_dir / name);
+    frames.push_back({world.time_s, name});
+  };
+  record(0);
+
+  for (std::int64_t s = 0; s < steps_total; ++s) {
+    const auto t0 = Clock::now();
+    world.step(scene.dt_s);
+    StepRow row;
+    row.dynamics_ms = ms_since(t0);
+    row.step = world.step_index;
+    row.time_s = world.time_s;
+    row.kinetic_energy = world.kinetic_energy_j();
+    for (const Body& b : world.bodies) {
+      if (!b.model) continue;
+      row.solver_iterations += b.model->last_solver_iterations();
+      if (!b.model->last_solve_converged()) ++unconverged_steps;
+    }
+    row.max_speed = world.max_speed_m_per_s();
+    dynamics_ms.push_back(row.dynamics_ms);
+    solver_iterations.push_back(static_cast<double>(row.solver_iterations));
+    csv.write(row);
+    outcome.steps_done = s + 1;
+    if (std::isnan(row.max_speed)) {
+      ++nan_steps;
+      outcome = {"unstable", fmt::format("non-finite position or velocity at step {}", row.step), s + 1, 0.0};
+    } else if (row.max_speed > scene.max_speed_m_per_s) {
+      outcome = {"unstable",
+                 fmt::format("a vertex moves at {:.4g} m/s at step {}, above the scene's max_speed {:.4g} m/s",
+                             row.max_speed, row.step, scene.max_speed_m_per_s),
+                 s + 1, 0.0};
+    }
+    record(row.step);
+    if (options.on_step) options.on_step(s + 1, steps_total);
+    if (outcome.status != "ok") break;
+  }
+  csv.commit();
+  if (!frames.empty()) write_pvd(options.out_dir / "frames.pvd", frames);
+  outcome.wall_s = ms_since(run_start) / 1000.0;
+
+  Json summary;
+  summary["handling_ms"] = nullptr;  // no collision handler measured (method none)
+  summary["overshoot_pct"] = nullptr;
+  summary["cycle_steps"] = nullptr;
+  summary["latency_steps"] = nullptr;
+  summary["recall_min"] = nullptr;
+  summary["recall_mean"] = nullptr;
+  summary["precision_min"] = nullptr;
+  summary["depth_err"] = nullptr;
+  summary["max_depth"] = nullptr;
+  summary["overlap_volume_max"] = nullptr;
+  summary["jitter"] = nullptr;
+  summary["tunneling"] = nullptr;
+  summary["nan_steps"] = nan_steps;
+  summary["dynamics_ms"] = distribution_json(dynamics_ms);
+  summary["kinetic_energy_final"] = world.kinetic_energy_j();
+  const Distribution iterations = summarize(solver_iterations);
+  summary["solver"] = {{"iterations_mean", iterations.mean},
+                       {"iterations_max", iterations.max},
+                       {"unconverged_steps", unconverged_steps}};
+
+  Json run;
+  run["schema"] = "tcbench.run/1";
+  run["scene"] = scene.name;
+  run["method"] = options.method;
+  run["budget"] = {{"kind", "none"}, {"value", nullptr}};
+  run["steps"] = outcome.steps_done;
+  run["steps_requested"] = steps_total;
+  run["dt"] = scene.dt_s;
+  run["seed"] = options.seed;
+  run["overrides"] = options.overrides;
+  run["command"] = options.command_line;
+  run["build"] = build_info();
+  run["machine"] = machine_info();
+  run["started_at"] = started_at;
+  run["wall_s"] = outcome.wall_s;
+  run["status"] = outcome.status;
+  run["unstable_reason"] = outcome.reason.empty() ? Json(nullptr) : Json(outcome.reason);
+  run["world"] = scene_json(scene, world);
+  run["summary"] = summary;
+  write_file_atomically(options.out_dir / "run.json", run.dump(2) + "\n");
+  return outcome;
+}
+
+}  // namespace tcb

@@ -1,0 +1,47 @@
+#pragma once
+/// One run: build the scene's world, step it, write DIR/steps.csv and
+/// DIR/run.json (CONTRACT.md "Results of one run").
+///
+/// Stability: after every step the state is checked; a non-finite position or
+/// velocity, or a vertex faster than the scene's max_speed, stops the run with
+/// status "unstable" (exit 1). The files are still written, with the steps
+/// done so far and the reason. Files appear only complete: steps.csv is
+/// streamed to a temporary name and renamed, run.json is written last.
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sim/world/scene.hpp"
+
+namespace tcb {
+
+struct RunOptions {
+  std::string method = "none";
+  std::optional<std::int64_t> steps;  ///< overrides the scene's step count
+  std::uint64_t seed = 0;
+  std::filesystem::path out_dir;
+  std::vector<std::string> overrides;  ///< the --set strings, recorded in run.json
+  std::string command_line;            ///< recorded in run.json
+  int record_every = 0;                ///< write a VTU frame every N steps (0: none)
+  /// Called after every step with (steps done, steps total); for progress.
+  std::function<void(std::int64_t, std::int64_t)> on_step;
+};
+
+struct RunOutcome {
+  std::string status;  ///< "ok" or "unstable"
+  std::string reason;  ///< why unstable; empty when ok
+  std::int64_t steps_done = 0;
+  double wall_s = 0.0;
+  int exit_code() const { return status == "ok" ? 0 : 1; }
+};
+
+/// Names of the collision handling methods run_scene accepts.
+std::vector<std::pair<std::string, std::string>> available_methods();
+
+RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options);
+
+}  // namespace tcb

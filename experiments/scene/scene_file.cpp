@@ -1,0 +1,384 @@
+#include "experiments/scene/scene_file.hpp"
+
+#include <toml++/toml.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <map>
+#include <optional>
+#include <set>
+#include <sstream>
+
+#include "sim/io/atomic_file.hpp"
+#include "sim/io/input_error.hpp"
+
+#ifndef TCBENCH_SOURCE_DIR
+#define TCBENCH_SOURCE_DIR "."
+#endif
+
+namespace tcb {
+namespace {
+
+// Where a node came from: the scene file, or the --set override that made it.
+// toml++ does not copy source regions with nodes, so the nodes that overrides
+// inserted are remembered here.
+struct Where {
+  std::string file;
+  int line;
+};
+
+struct Origins {
+  std::string file;
+  std::map<const toml::node*, std::string> overridden;  // node -> "--set key=value"
+};
+
+Where where_of(const toml::node& node, const Origins& origins) {
+  if (auto it = origins.overridden.find(&node); it != origins.overridden.end()) return {it->second, 0};
+  return {origins.file, static_cast<int>(node.source().begin.line)};
+}
+
+// Reads the keys of one table with type and range checks, remembering which
+// keys it used so finish() can reject the rest as unknown.
+class TableReader {
+ public:
+  TableReader(const toml::table& table, std::string context, const Origins& file)
+      : m_table(table), m_context(std::move(context)), m_file(file) {}
+
+  const toml::node* node(std::string_view key) {
+    m_known.insert(std::string(key));
+    return m_table.get(key);
+  }
+
+  [[noreturn]] void fail(std::string_view key, const std::string& problem) const {
+    const toml::node* n = m_table.get(key);
+    const Where w = n ? where_of(*n, m_file) : where_of(m_table, m_file);
+    throw InputError(w.file, w.line, m_context + "." + std::string(key) + ": " + problem);
+  }
+
+  std::optional<double> number(std::string_view key) {
+    const toml::node* n = node(key);
+    if (!n) return std::nullopt;
+    if (!n->is_number()) fail(key, "must be a number");
+    const double v = *n->value<double>();
+    if (!std::isfinite(v)) fail(key, "must be finite");
+    return v;
+  }
+  double positive(std::string_view key, double fallback) {
+    const auto v = number(key);
+    if (v && !(*v > 0.0)) fail(key, "must be positive");
+    return v.value_or(fallback);
+  }
+  double non_negative(std::string_view key, double fallback) {
+    const auto v = number(key);
+    if (v && *v < 0.0) fail(key, "must not be negative");
+    return v.value_or(fallback);
+  }
+  std::optional<std::int64_t> integer(std::string_view key, std::int64_t min_value, std::int64_t max_value) {
+    const toml::node* n = node(key);
+    if (!n) return std::nullopt;
+    if (!n->is_integer()) fail(key, "must be a whole number");
+    const std::int64_t v = *n->value<std::int64_t>();
+    if (v < min_value || v > max_value)
+      fail(key, "must lie in [" + std::to_string(min_value) + ", " + std::to_string(max_value) + "]");
+    return v;
+  }
+  std::optional<bool> boolean(std::string_view key) {
+    const toml::node* n = node(key);
+    if (!n) return std::nullopt;
+    if (!n->is_boolean()) fail(key, "must be true or false");
+    return *n->value<bool>();
+  }
+  std::optional<std::string> string(std::string_view key) {
+    const toml::node* n = node(key);
+    if (!n) return std::nullopt;
+    if (!n->is_string()) fail(key, "must be a string");
+    return *n->value<std::string>();
+  }
+  std::optional<Vec3> vec3(std::string_view key) {
+    const toml::node* n = node(key);
+    if (!n) return std::nullopt;
+    const toml::array* a = n->as_array();
+    if (!a || a->size() != 3) fail(key, "must be an array of three numbers");
+    Vec3 v;
+    for (int k = 0; k < 3; ++k) {
+      if (!(*a)[k].is_number()) fail(key, "must be an array of three numbers");
+      v[k] = *(*a)[k].value<double>();
+      if (!std::isfinite(v[k])) fail(key, "must be finite");
+    }
+    return v;
+  }
+  const toml::table* table(std::string_view key) {
+    const toml::node* n = node(key);
+    if (!n) return nullptr;
+    if (!n->is_table()) fail(key, "must be a table");
+    return n->as_table();
+  }
+  int line_of(std::string_view key) const {
+    const toml::node* n = m_table.get(key);
+    return n ? where_of(*n, m_file).line : where_of(m_table, m_file).line;
+  }
+
+  void finish() const {
+    for (auto&& [key, value] : m_table) {
+      if (m_known.count(std::string(key.str()))) continue;
+      std::string known;
+      for (const auto& k : m_known) known += (known.empty() ? "" : ", ") + k;
+      const Where w = where_of(value, m_file);
+      throw InputError(w.file, w.line,
+                       "unknown key '" + std::string(key.str()) + "' in " + m_context + " (known: " + known + ")");
+    }
+  }
+
+ private:
+  const toml::table& m_table;
+  std::string m_context;
+  const Origins& m_file;
+  std::set<std::string> m_known;
+};
+
+Material read_material(TableReader& object, const std::string& context, const Origins& file) {
+  Material m;
+  const toml::table* table = object.table("material");
+  if (!table) return m;
+  TableReader r(*table, context + ".material", file);
+  if (const auto model = r.string("model")) {
+    if (*model == "corotational_fem") {
+      m.model = MaterialModel::CorotationalFem;
+    } else if (*model == "mass_spring") {
+      m.model = MaterialModel::MassSpring;
+      m.integrator = Integrator::EulerCromer;
+    } else {
+      r.fail("model", "must be \"corotational_fem\" or \"mass_spring\", not \"" + *model + "\"");
+    }
+  }
+  if (const auto integrator = r.string("integrator")) {
+    const bool fem = m.model == MaterialModel::CorotationalFem;
+    if (fem && *integrator != "implicit_euler")
+      r.fail("integrator", "corotational_fem integrates with \"implicit_euler\" only");
+    if (!fem && *integrator == "euler_cromer")
+      m.integrator = Integrator::EulerCromer;
+    else if (!fem && *integrator == "verlet")
+      m.integrator = Integrator::VelocityVerlet;
+    else if (!fem)
+      r.fail("integrator", "mass_spring integrates with \"euler_cromer\" or \"verlet\"");
+  }
+  m.youngs_modulus_pa = r.positive("youngs_modulus", m.youngs_modulus_pa);
+  if (const auto nu = r.number("poisson_ratio")) {
+    if (!(*nu > -1.0 && *nu < 0.5)) r.fail("poisson_ratio", "must lie strictly between -1 and 0.5");
+    m.poisson_ratio = *nu;
+  }
+  m.density_kg_per_m3 = r.positive("density", m.density_kg_per_m3);
+  m.damping_mass_per_s = r.non_negative("damping_mass", m.damping_mass_per_s);
+  m.damping_stiffness_s = r.non_negative("damping_stiffness", m.damping_stiffness_s);
+  m.cg_tolerance = r.positive("cg_tolerance", m.cg_tolerance);
+  m.cg_max_iterations = static_cast<int>(r.integer("cg_max_iterations", 1, 100000).value_or(m.cg_max_iterations));
+  r.finish();
+  return m;
+}
+
+ObjectDesc read_object(const toml::table& table, std::size_t index, const std::filesystem::path& path,
+                       const Origins& file) {
+  ObjectDesc o;
+  TableReader r(table, "object[" + std::to_string(index) + "]", file);
+  o.source_line = where_of(table, file).line;
+  o.name = r.string("name").value_or("object" + std::to_string(index));
+  if (o.name.empty()) r.fail("name", "must not be empty");
+  const std::string context = "object '" + o.name + "'";
+  TableReader named(table, context, file);  // errors below name the object
+  const auto mesh = named.string("mesh");
+  if (!mesh) throw InputError(file.file, o.source_line, context + " has no mesh (a file or a generator such as \"box:size=1x0.1x1,cells=8x1x8\")");
+  o.mesh = *mesh;
+  o.base_dir = path.parent_path();
+  o.position_m = named.vec3("position").value_or(o.position_m);
+  o.scale = named.positive("scale", o.scale);
+  o.velocity_m_per_s = named.vec3("velocity").value_or(o.velocity_m_per_s);
+  o.passive = named.boolean("passive").value_or(false);
+  o.self_collision = named.boolean("self_collision").value_or(false);
+  named.node("name");
+  o.material = read_material(named, context, file);
+  if (const toml::table* stack = named.table("stack")) {
+    TableReader s(*stack, context + ".stack", file);
+    o.stack.count = static_cast<int>(s.integer("count", 1, 100000).value_or(1));
+    if (const auto axis = s.string("axis")) {
+      if (*axis == "x") o.stack.axis = 0;
+      else if (*axis == "y") o.stack.axis = 1;
+      else if (*axis == "z") o.stack.axis = 2;
+      else s.fail("axis", "must be \"x\", \"y\" or \"z\"");
+    }
+    o.stack.gap_m = s.non_negative("gap", 0.0);
+    s.finish();
+  }
+  named.finish();
+  return o;
+}
+
+// ---- --set overrides -------------------------------------------------------
+
+std::vector<std::string> split_path(const std::string& path) {
+  std::vector<std::string> parts;
+  std::stringstream in(path);
+  for (std::string part; std::getline(in, part, '.');) parts.push_back(part);
+  return parts;
+}
+
+// Escapes a bare word into a TOML basic string.
+std::string toml_string(const std::string& text) {
+  std::string quoted = "\"";
+  for (const char c : text) {
+    if (c == '"' || c == '\\') quoted += '\\';
+    quoted += c;
+  }
+  return quoted + "\"";
+}
+
+void apply_override(toml::table& root, const std::string& assignment, Origins& origins) {
+  const std::string origin = "--set " + assignment;
+  const std::size_t eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0) throw InputError(origin, 0, "expected key=value");
+  const std::vector<std::string> keys = split_path(assignment.substr(0, eq));
+  const std::string value_text = assignment.substr(eq + 1);
+  for (const auto& k : keys)
+    if (k.empty()) throw InputError(origin, 0, "empty key segment");
+
+  // The value, parsed as TOML; a bare word falls back to a string.
+  toml::table parsed;
+  try {
+    parsed = toml::parse("value = " + value_text, origin);
+  } catch (const toml::parse_error&) {
+    try {
+      parsed = toml::parse("value = " + toml_string(value_text), origin);
+    } catch (const toml::parse_error& e) {
+      throw InputError(origin, 0, std::string(e.description()));
+    }
+  }
+  toml::node& value = *parsed.get("value");
+
+  toml::table* table = &root;
+  for (std::size_t i = 0; i + 1 < keys.size(); ++i) {
+    toml::node* next = table->get(keys[i]);
+    if (next && next->is_array()) {  // [[object]]: select by name or index
+      toml::array& array = *next->as_array();
+      const std::string& selector = keys[++i];
+      toml::table* found = nullptr;
+      for (std::size_t k = 0; k < array.size(); ++k) {
+        toml::table* element = array[k].as_table();
+        if (!element) continue;
+        const auto name = (*element)["name"].value<std::string>();
+        if ((name && *name == selector) || selector == std::to_string(k)) found = element;
+      }
+      if (!found) throw InputError(origin, 0, "no " + keys[i - 1] + " named or numbered '" + selector + "'");
+      table = found;
+      if (i + 1 >= keys.size()) throw InputError(origin, 0, "the path ends at a whole " + keys[i - 1]);
+      continue;
+    }
+    if (!next) next = &table->insert_or_assign(keys[i], toml::table{}).first->second;
+    if (!next->is_table()) throw InputError(origin, 0, "'" + keys[i] + "' is not a table");
+    table = next->as_table();
+  }
+  value.visit([&](auto& concrete) { table->insert_or_assign(keys.back(), concrete); });
+  origins.overridden[table->get(keys.back())] = origin;
+  // Values nested inside an inserted array or table come from the override too.
+  if (toml::node* inserted = table->get(keys.back()); inserted->is_array())
+    for (auto& element : *inserted->as_array()) origins.overridden[&element] = origin;
+}
+
+}  // namespace
+
+SceneDesc parse_scene(const std::string& text, const std::filesystem::path& path,
+                      const std::vector<std::string>& overrides) {
+  Origins file{path.string(), {}};
+  toml::table root;
+  try {
+    root = toml::parse(text, file.file);
+  } catch (const toml::parse_error& e) {
+    throw InputError(file.file, static_cast<int>(e.source().begin.line), std::string(e.description()));
+  }
+  for (const std::string& o : overrides) apply_override(root, o, file);
+
+  SceneDesc scene;
+  scene.path = path;
+  scene.name = path.stem().string();
+  TableReader top(root, "scene file", file);
+  if (const toml::table* s = top.table("scene")) {
+    TableReader r(*s, "scene", file);
+    scene.name = r.string("name").value_or(scene.name);
+    r.string("description");
+    scene.dt_s = r.positive("dt", scene.dt_s);
+    scene.steps = r.integer("steps", 0, std::int64_t(1) << 40).value_or(scene.steps);
+    scene.gravity_m_per_s2 = r.vec3("gravity").value_or(scene.gravity_m_per_s2);
+    scene.max_speed_m_per_s = r.positive("max_speed", scene.max_speed_m_per_s);
+    r.finish();
+  }
+  if (const toml::table* g = top.table("ground")) {
+    TableReader r(*g, "ground", file);
+    GroundPlane ground;
+    ground.height_m = r.number("height").value_or(0.0);
+    ground.friction = r.non_negative("friction", ground.friction);
+    r.finish();
+    scene.ground = ground;
+  }
+  if (const toml::table* c = top.table("collision")) {
+    TableReader r(*c, "collision", file);
+    if (const toml::node* cell = r.node("cell_size")) {
+      if (cell->is_string() && *cell->value<std::string>() == "auto") {
+        scene.collision.cell_size_m.reset();
+      } else {
+        const auto size = r.number("cell_size");
+        if (!(*size > 0.0)) r.fail("cell_size", "must be \"auto\" or a positive length");
+        scene.collision.cell_size_m = size;
+      }
+    }
+    scene.collision.response_stiffness_n_per_m =
+        r.non_negative("response_stiffness", scene.collision.response_stiffness_n_per_m);
+    scene.collision.friction = r.non_negative("friction", scene.collision.friction);
+    r.finish();
+  }
+  if (const toml::node* objects = top.node("object")) {
+    const toml::array* array = objects->as_array();
+    if (!array || !array->is_array_of_tables())
+      top.fail("object", "must be an array of tables: write [[object]]");
+    std::set<std::string> names;
+    for (std::size_t i = 0; i < array->size(); ++i) {
+      ObjectDesc o = read_object(*(*array)[i].as_table(), i, path, file);
+      if (!names.insert(o.name).second)
+        throw InputError(file.file, o.source_line, "two objects are named '" + o.name + "'");
+      scene.objects.push_back(std::move(o));
+    }
+  }
+  top.finish();
+  if (scene.objects.empty()) throw InputError(file.file, 0, "the scene has no [[object]]");
+  return scene;
+}
+
+SceneDesc load_scene_file(const std::filesystem::path& path, const std::vector<std::string>& overrides) {
+  return parse_scene(read_file(path), path, overrides);
+}
+
+std::vector<std::filesystem::path> default_scene_dirs() {
+  std::vector<std::filesystem::path> dirs;
+  if (const char* env = std::getenv("TCBENCH_SCENES")) {
+    std::stringstream in(env);
+    for (std::string dir; std::getline(in, dir, ':');)
+      if (!dir.empty()) dirs.emplace_back(dir);
+  }
+  dirs.emplace_back(std::filesystem::path(TCBENCH_SOURCE_DIR) / "experiments" / "scenes");
+  return dirs;
+}
+
+std::filesystem::path resolve_scene(const std::string& scene, const std::vector<std::filesystem::path>& dirs) {
+  const std::filesystem::path direct(scene);
+  if (direct.extension() == ".toml") {
+    if (!std::filesystem::exists(direct)) throw InputError(scene, 0, "no such scene file");
+    return direct;
+  }
+  for (const auto& dir : dirs)
+    if (std::filesystem::exists(dir / (scene + ".toml"))) return dir / (scene + ".toml");
+  std::string searched;
+  for (const auto& dir : dirs) {
+    searched += ' ';
+    searched += dir.string();
+  }
+  throw InputError(scene, 0, "no scene of that name (searched:" + searched + "; `tcbench list scenes` lists them)");
+}
+
+}  // namespace tcb

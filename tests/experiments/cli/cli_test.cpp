@@ -1,0 +1,113 @@
+// The command line end to end, in-process: exit codes, help, files.
+#include "experiments/cli/cli.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+#include <vector>
+
+#include "sim/io/atomic_file.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Result {
+  int code;
+  std::string out, err;
+};
+
+Result cli(std::vector<std::string> args) {
+  args.insert(args.begin(), "tcbench");
+  std::vector<const char*> argv;
+  for (const auto& a : args) argv.push_back(a.c_str());
+  std::ostringstream out, err;
+  auto* old_out = std::cout.rdbuf(out.rdbuf());
+  auto* old_err = std::cerr.rdbuf(err.rdbuf());
+  const int code = tcb::run_cli(static_cast<int>(argv.size()), argv.data());
+  std::cout.rdbuf(old_out);
+  std::cerr.rdbuf(old_err);
+  return {code, out.str(), err.str()};
+}
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("tcbench_cli_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  return dir;
+}
+
+}  // namespace
+
+TEST_CASE("cli: help and version on every subcommand", "[cli]") {
+  CHECK(cli({"--help"}).code == 0);
+  CHECK_THAT(cli({"--version"}).out, Catch::Matchers::Contains("tcbench 0.1.0"));
+  for (const char* sub : {"run", "reproduce", "list", "mesh"}) {
+    INFO(sub);
+    const Result r = cli({sub, "--help"});
+    CHECK(r.code == 0);
+    CHECK_FALSE(r.out.empty());
+  }
+  CHECK(cli({"mesh", "info", "--help"}).code == 0);
+  CHECK(cli({}).code == 2);
+  CHECK(cli({"frobnicate"}).code == 2);
+}
+
+TEST_CASE("cli: run exit codes 0, 1 and 2", "[cli]") {
+  const fs::path dir = fresh_dir("run");
+  const Result ok = cli({"run", "cube_drop", "--steps", "20", "--out", dir.string(), "--quiet"});
+  CHECK(ok.code == 0);
+  CHECK(ok.out.empty());
+  CHECK(fs::exists(dir / "run.json"));
+  CHECK(nlohmann::json::parse(tcb::read_file(dir / "run.json"))["steps"] == 20);
+
+  const Result unstable = cli({"run", "cube_drop", "--set", "object.cube.material.model=mass_spring", "--set",
+                               "scene.dt=0.05", "--out", (dir / "boom").string()});
+  CHECK(unstable.code == 1);
+  CHECK_THAT(unstable.err, Catch::Matchers::Contains("unstable"));
+  CHECK(fs::exists(dir / "boom" / "run.json"));
+
+  const Result bad = cli({"run", "cube_drop", "--set", "scene.dt=-1", "--out", (dir / "bad").string()});
+  CHECK(bad.code == 2);
+  CHECK_THAT(bad.err, Catch::Matchers::Contains("--set scene.dt=-1: scene.dt: must be positive"));
+  CHECK_FALSE(fs::exists(dir / "bad"));
+  CHECK(cli({"run"}).code == 2);
+  CHECK(cli({"run", "cube_drop", "--steps", "-3"}).code == 2);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("cli: mesh info and convert", "[cli]") {
+  const fs::path dir = fresh_dir("mesh");
+  fs::create_directories(dir);
+  const Result info = cli({"mesh", "info", std::string(TCBENCH_SHARED_MESHES) + "/teapot_tet.mesh", "--json"});
+  REQUIRE(info.code == 0);
+  const auto j = nlohmann::json::parse(info.out);
+  CHECK(j["vertices"] == 4650);
+  CHECK(j["tets"] == 15412);
+  for (const char* key : {"surface_triangles", "volume", "bbox_min", "bbox_max", "inverted_tets", "degenerate_tets"})
+    CHECK(j.contains(key));
+  CHECK(cli({"mesh", "info", "box:size=1x1x1,cells=2x2x2"}).code == 0);
+  const Result converted = cli({"mesh", "convert", "box:size=1x1x1,cells=2x2x2", (dir / "box.mesh").string()});
+  CHECK(converted.code == 0);
+  CHECK(cli({"mesh", "info", (dir / "box.mesh").string(), "--json"}).out.find("\"tets\":48") != std::string::npos);
+  CHECK(cli({"mesh", "convert", (dir / "box.mesh").string(), (dir / "box.vtu").string()}).code == 0);
+  CHECK(fs::exists(dir / "box.vtu"));
+  CHECK(cli({"mesh", "convert", (dir / "box.mesh").string(), (dir / "box.stl").string()}).code == 2);
+  const Result missing = cli({"mesh", "info", (dir / "none.mesh").string()});
+  CHECK(missing.code == 2);
+  CHECK_THAT(missing.err, Catch::Matchers::Contains("none.mesh: cannot open file"));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("cli: list", "[cli]") {
+  const Result scenes = cli({"list", "scenes"});
+  CHECK(scenes.code == 0);
+  CHECK_THAT(scenes.out, Catch::Matchers::Contains("plates20"));
+  CHECK_THAT(scenes.out, Catch::Matchers::Contains("cube_drop"));
+  CHECK_THAT(cli({"list", "methods"}).out, Catch::Matchers::Contains("none"));
+  CHECK(cli({"list", "widgets"}).code == 2);
+}

@@ -1,0 +1,151 @@
+#include "experiments/run/run_scene.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+
+#include <fstream>
+
+#include "experiments/results/steps_csv.hpp"
+#include "experiments/scene/scene_file.hpp"
+#include "sim/io/atomic_file.hpp"
+#include "sim/io/input_error.hpp"
+
+using namespace tcb;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("tcbench_run_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  return dir;
+}
+
+std::vector<std::string> lines_of(const fs::path& file) {
+  std::ifstream in(file);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+SceneDesc small_drop() {
+  return parse_scene(R"([scene]
+dt = 0.001
+steps = 50
+[ground]
+height = 0.0
+[[object]]
+name = "cube"
+mesh = "box:size=0.1x0.1x0.1,cells=2x2x2"
+position = [0.0, 0.2, 0.0]
+)",
+                     "small.toml");
+}
+
+}  // namespace
+
+TEST_CASE("a run writes complete steps.csv and run.json", "[run]") {
+  const fs::path dir = fresh_dir("ok");
+  RunOptions options;
+  options.out_dir = dir;
+  options.seed = 7;
+  options.record_every = 25;
+  std::int64_t progress_calls = 0;
+  options.on_step = [&](std::int64_t, std::int64_t) { ++progress_calls; };
+  const RunOutcome outcome = run_scene(small_drop(), options);
+  CHECK(outcome.status == "ok");
+  CHECK(outcome.exit_code() == 0);
+  CHECK(progress_calls == 50);
+
+  const auto lines = lines_of(dir / "steps.csv");
+  REQUIRE(lines.size() == 51);
+  std::string header;
+  for (const auto& c : StepsCsv::columns()) header += (header.empty() ? "" : ",") + c;
+  CHECK(lines[0] == header);
+  for (const char* column : {"step", "time_s", "handling_ms", "budget_ms", "work_units", "cycle", "cycle_done",
+                             "colliding_points", "exact_forces", "estimated_forces", "oracle_points", "recall",
+                             "precision", "depth_err_mean", "depth_err_max", "max_depth", "overlap_volume",
+                             "kinetic_energy"})
+    CHECK_THAT(lines[0], Catch::Matchers::Contains(column));
+  CHECK(lines[1].rfind("1,0.001,,", 0) == 0);  // handling columns empty: nothing measured them
+
+  const auto run = nlohmann::json::parse(read_file(dir / "run.json"));
+  CHECK(run["schema"] == "tcbench.run/1");
+  CHECK(run["status"] == "ok");
+  CHECK(run["steps"] == 50);
+  CHECK(run["seed"] == 7);
+  CHECK(run["budget"]["kind"] == "none");
+  for (const char* key : {"git_sha", "dirty", "compiler", "flags", "build_type"}) CHECK(run["build"].contains(key));
+  for (const char* key : {"cpu", "cores"}) CHECK(run["machine"].contains(key));
+  for (const char* key : {"handling_ms", "overshoot_pct", "cycle_steps", "latency_steps", "recall_min", "recall_mean",
+                          "precision_min", "depth_err", "max_depth", "overlap_volume_max", "jitter", "tunneling",
+                          "nan_steps"})
+    CHECK(run["summary"].contains(key));
+  CHECK(run["summary"]["handling_ms"].is_null());
+  CHECK(run["summary"]["nan_steps"] == 0);
+  CHECK(fs::exists(dir / "frames.pvd"));
+  CHECK(fs::exists(dir / "frames/frame_000050.vtu"));
+  for (const auto& entry : fs::recursive_directory_iterator(dir)) CHECK(entry.path().extension() != ".tmp");
+  fs::remove_all(dir);
+}
+
+TEST_CASE("an exploding run stops, says why, keeps its files and exits 1", "[run]") {
+  const fs::path dir = fresh_dir("unstable");
+  // An explicit mass-spring model with a time step far beyond its stability limit.
+  const SceneDesc scene = parse_scene(R"([scene]
+dt = 0.05
+steps = 500
+[[object]]
+name = "cube"
+mesh = "box:size=0.1x0.1x0.1,cells=2x2x2"
+material = { model = "mass_spring", youngs_modulus = 1e7 }
+)",
+                                      "explode.toml");
+  RunOptions options;
+  options.out_dir = dir;
+  const RunOutcome outcome = run_scene(scene, options);
+  CHECK(outcome.status == "unstable");
+  CHECK(outcome.exit_code() == 1);
+  CHECK(outcome.steps_done < 500);
+  const auto run = nlohmann::json::parse(read_file(dir / "run.json"));
+  CHECK(run["status"] == "unstable");
+  CHECK(run["steps"] == outcome.steps_done);
+  CHECK_THAT(run["unstable_reason"].get<std::string>(), Catch::Matchers::Contains("max_speed"));
+  CHECK(lines_of(dir / "steps.csv").size() == static_cast<std::size_t>(outcome.steps_done + 1));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("bad input fails before any result file exists", "[run]") {
+  const fs::path dir = fresh_dir("bad");
+  SceneDesc scene = small_drop();
+  scene.objects[0].mesh = "nowhere.mesh";
+  RunOptions options;
+  options.out_dir = dir;
+  CHECK_THROWS_AS(run_scene(scene, options), InputError);
+  options.method = "no_such_method";
+  CHECK_THROWS_WITH(run_scene(small_drop(), options), Catch::Matchers::Contains("unknown method"));
+  CHECK_FALSE(fs::exists(dir));
+}
+
+TEST_CASE("runs are deterministic apart from timings", "[run]") {
+  const fs::path a = fresh_dir("det_a"), b = fresh_dir("det_b");
+  for (const auto& dir : {a, b}) {
+    RunOptions options;
+    options.out_dir = dir;
+    run_scene(small_drop(), options);
+  }
+  const auto la = lines_of(a / "steps.csv"), lb = lines_of(b / "steps.csv");
+  REQUIRE(la.size() == lb.size());
+  const auto without_timing = [](const std::string& line) {  // drop dynamics_ms (column 20)
+    std::vector<std::string> cells;
+    std::stringstream in(line);
+    for (std::string c; std::getline(in, c, ',');) cells.push_back(c);
+    cells.erase(cells.begin() + 19);
+    return cells;
+  };
+  for (std::size_t i = 1; i < la.size(); ++i) REQUIRE(without_timing(la[i]) == without_timing(lb[i]));
+  fs::remove_all(a);
+  fs::remove_all(b);
+}

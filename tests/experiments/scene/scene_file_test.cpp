@@ -1,0 +1,150 @@
+#include "experiments/scene/scene_file.hpp"
+
+#include <catch2/catch.hpp>
+
+#include "sim/io/input_error.hpp"
+
+using namespace tcb;
+using Catch::Matchers::Contains;
+
+namespace {
+
+const char* kScene = R"(# a test scene
+[scene]
+dt = 0.002
+steps = 10
+gravity = [0.0, -1.0, 0.0]
+
+[ground]
+height = -0.5
+friction = 0.25
+
+[collision]
+cell_size = 0.05
+response_stiffness = 2.0e4
+
+[[object]]
+name = "plate"
+mesh = "box:size=1x0.1x1,cells=2x1x2"
+position = [0.0, 1.0, 0.0]
+stack = { count = 3, axis = "y", gap = 0.01 }
+material = { model = "mass_spring", integrator = "verlet", youngs_modulus = 2.0e5, density = 500 }
+
+[[object]]
+name = "floor"
+mesh = "box:size=3x0.1x3"
+passive = true
+)";
+
+struct BadCase {
+  const char* name;
+  std::string text;
+  std::vector<std::string> overrides;
+  std::string file;
+  int line;
+  const char* message;
+};
+
+}  // namespace
+
+TEST_CASE("scene file: every key read", "[scene]") {
+  const SceneDesc s = parse_scene(kScene, "dir/test.toml");
+  CHECK(s.name == "test");
+  CHECK(s.dt_s == 0.002);
+  CHECK(s.steps == 10);
+  CHECK(s.gravity_m_per_s2 == Vec3(0, -1, 0));
+  REQUIRE(s.ground);
+  CHECK(s.ground->height_m == -0.5);
+  CHECK(s.ground->friction == 0.25);
+  CHECK(s.collision.cell_size_m == 0.05);
+  CHECK(s.collision.response_stiffness_n_per_m == 2.0e4);
+  REQUIRE(s.objects.size() == 2);
+  const ObjectDesc& plate = s.objects[0];
+  CHECK(plate.base_dir == "dir");
+  CHECK(plate.source_line == 15);
+  CHECK(plate.stack.count == 3);
+  CHECK(plate.stack.gap_m == 0.01);
+  CHECK(plate.material.model == MaterialModel::MassSpring);
+  CHECK(plate.material.integrator == Integrator::VelocityVerlet);
+  CHECK(plate.material.youngs_modulus_pa == 2.0e5);
+  CHECK(plate.material.density_kg_per_m3 == 500.0);
+  CHECK(s.objects[1].passive);
+}
+
+TEST_CASE("scene file: --set overrides, by name and by index, and new tables", "[scene]") {
+  const SceneDesc s = parse_scene(kScene, "t.toml",
+                                  {"scene.dt=0.004", "object.plate.material.youngs_modulus=3e5", "object.1.scale=2",
+                                   "object.plate.material.model=corotational_fem",
+                                   "object.plate.material.integrator=implicit_euler", "collision.cell_size=auto",
+                                   "object.floor.velocity=[1, 2, 3]"});
+  CHECK(s.dt_s == 0.004);
+  CHECK(s.objects[0].material.youngs_modulus_pa == 3e5);
+  CHECK(s.objects[0].material.model == MaterialModel::CorotationalFem);
+  CHECK(s.objects[1].scale == 2.0);
+  CHECK(s.objects[1].velocity_m_per_s == Vec3(1, 2, 3));
+  CHECK_FALSE(s.collision.cell_size_m.has_value());
+  const std::string no_ground = "[[object]]\nmesh = \"box:size=1x1x1\"\n";
+  CHECK_FALSE(parse_scene(no_ground, "g.toml").ground);
+  const SceneDesc with_ground = parse_scene(no_ground, "g.toml", {"ground.height=0.5"});
+  REQUIRE(with_ground.ground);
+  CHECK(with_ground.ground->height_m == 0.5);
+}
+
+TEST_CASE("scene file: malformed input names the file, the line and the problem", "[scene]") {
+  const std::string obj = "[[object]]\nmesh = \"box:size=1x1x1\"\n";
+  const BadCase cases[] = {
+      {"TOML syntax", "[scene]\ndt = = 1\n", {}, "bad.toml", 2, ""},
+      {"unknown key", "[scene]\ndtt = 0.1\n" + obj, {}, "bad.toml", 2, "unknown key 'dtt' in scene"},
+      {"unknown table", "[sceen]\ndt = 0.1\n" + obj, {}, "bad.toml", 1, "unknown key 'sceen'"},
+      {"wrong type", "[scene]\ndt = \"fast\"\n" + obj, {}, "bad.toml", 2, "scene.dt: must be a number"},
+      {"negative dt", "[scene]\ndt = -0.1\n" + obj, {}, "bad.toml", 2, "must be positive"},
+      {"NaN dt", "[scene]\ndt = nan\n" + obj, {}, "bad.toml", 2, "must be finite"},
+      {"fractional steps", "[scene]\nsteps = 1.5\n" + obj, {}, "bad.toml", 2, "whole number"},
+      {"short gravity", "[scene]\ngravity = [0, 1]\n" + obj, {}, "bad.toml", 2, "three numbers"},
+      {"no objects", "[scene]\ndt = 0.1\n", {}, "bad.toml", 0, "no [[object]]"},
+      {"object without mesh", "[[object]]\nname = \"a\"\n", {}, "bad.toml", 1, "object 'a' has no mesh"},
+      {"duplicate names", obj + "name = \"a\"\n" + obj + "name = \"a\"\n", {}, "bad.toml", 4, "two objects are named 'a'"},
+      {"unknown object key", obj + "colour = \"red\"\n", {}, "bad.toml", 3, "unknown key 'colour'"},
+      {"bad material model", obj + "material = { model = \"jelly\" }\n", {}, "bad.toml", 3, "\"jelly\""},
+      {"poisson 0.5", obj + "material = { poisson_ratio = 0.5 }\n", {}, "bad.toml", 3, "strictly between"},
+      {"fem with verlet", obj + "material = { integrator = \"verlet\" }\n", {}, "bad.toml", 3, "\"implicit_euler\" only"},
+      {"stack axis", obj + "stack = { count = 2, axis = \"w\" }\n", {}, "bad.toml", 3, "\"x\", \"y\" or \"z\""},
+      {"zero stack", obj + "stack = { count = 0 }\n", {}, "bad.toml", 3, "must lie in [1, 100000]"},
+      {"object not array", "object = 3\n", {}, "bad.toml", 1, "[[object]]"},
+      {"cell size", "[collision]\ncell_size = -1\n" + obj, {}, "bad.toml", 2, "\"auto\" or a positive length"},
+      {"--set bad value", obj, {"scene.dt=abc"}, "--set scene.dt=abc", 0, "must be a number"},
+      {"--set unknown key", obj, {"scene.dtt=1"}, "--set scene.dtt=1", 0, "unknown key 'dtt'"},
+      {"--set no such object", obj, {"object.b.scale=2"}, "--set object.b.scale=2", 0, "no object named"},
+      {"--set no equals", obj, {"scene.dt"}, "--set scene.dt", 0, "expected key=value"},
+      {"--set contradicts the file", kScene, {"object.plate.material.model=corotational_fem"}, "bad.toml", 20,
+       "integrates with \"implicit_euler\" only"},
+      {"--set into a value", obj, {"object.0.mesh.x=1"}, "--set object.0.mesh.x=1", 0, "not a table"},
+  };
+  for (const BadCase& c : cases) {
+    INFO(c.name);
+    try {
+      parse_scene(c.text, "bad.toml", c.overrides);
+      FAIL("accepted: " << c.name);
+    } catch (const InputError& e) {
+      CHECK(e.file() == c.file);
+      CHECK(e.line() == c.line);
+      CHECK_THAT(e.what(), Contains(c.message));
+    }
+  }
+}
+
+TEST_CASE("the committed scenes load and build", "[scene]") {
+  for (const char* name : {"plates20", "cube_drop"}) {
+    INFO(name);
+    const SceneDesc s = load_scene_file(resolve_scene(name, default_scene_dirs()));
+    const World world = build_world(s);
+    CHECK(world.bodies.size() == (std::string(name) == "plates20" ? 20u : 1u));
+    CHECK(world.ground.has_value());
+  }
+}
+
+TEST_CASE("resolve_scene: names, paths and clear misses", "[scene]") {
+  CHECK(resolve_scene("plates20", default_scene_dirs()).filename() == "plates20.toml");
+  CHECK_THROWS_WITH(resolve_scene("nope", default_scene_dirs()), Contains("no scene of that name"));
+  CHECK_THROWS_WITH(resolve_scene("missing.toml", default_scene_dirs()), Contains("no such scene file"));
+}
