@@ -124,15 +124,20 @@ void CorotationalFem::step(std::span<Vec3> x, std::span<Vec3> v, std::span<const
     const Eigen::Matrix<double, 12, 1> local = e.stiffness * u;
     for (int k = 0; k < 4; ++k) m_rhs.segment<3>(3 * e.v[k]) -= dt * (r * local.segment<3>(3 * k));
     const auto& slots = m_block_slots[ei];
+    const auto scatter = [&](int a, int b, const Eigen::Matrix3d& block) {
+      for (int row = 0; row < 3; ++row) {
+        double* dst = values + slots[(a * 4 + b) * 3 + row];
+        dst[0] += block(row, 0);
+        dst[1] += block(row, 1);
+        dst[2] += block(row, 2);
+      }
+    };
+    // K_e is symmetric, so block (b, a) of R K_e R^T is block (a, b) transposed.
     for (int a = 0; a < 4; ++a)
-      for (int b = 0; b < 4; ++b) {
+      for (int b = a; b < 4; ++b) {
         const Eigen::Matrix3d block = stiffness_factor * (r * e.stiffness.block<3, 3>(3 * a, 3 * b) * r.transpose());
-        for (int row = 0; row < 3; ++row) {
-          double* dst = values + slots[(a * 4 + b) * 3 + row];
-          dst[0] += block(row, 0);
-          dst[1] += block(row, 1);
-          dst[2] += block(row, 2);
-        }
+        scatter(a, b, block);
+        if (b != a) scatter(b, a, block.transpose());
       }
   }
   for (std::size_t i = 0; i < n; ++i) {
