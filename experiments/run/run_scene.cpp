@@ -137,18 +137,10 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
   outcome.wall_s = ms_since(run_start) / 1000.0;
 
   Json summary;
-  summary["handling_ms"] = nullptr;  // no collision handler measured (method none)
-  summary["overshoot_pct"] = nullptr;
-  summary["cycle_steps"] = nullptr;
-  summary["latency_steps"] = nullptr;
-  summary["recall_min"] = nullptr;
-  summary["recall_mean"] = nullptr;
-  summary["precision_min"] = nullptr;
-  summary["depth_err"] = nullptr;
-  summary["max_depth"] = nullptr;
-  summary["overlap_volume_max"] = nullptr;
-  summary["jitter"] = nullptr;
-  summary["tunneling"] = nullptr;
+  // Not measured without a collision handler and the oracle: null, never 0.
+  for (const char* key : {"handling_ms", "overshoot_pct", "cycle_steps", "latency_steps", "recall_min", "recall_mean",
+                          "precision_min", "depth_err", "max_depth", "overlap_volume_max", "jitter", "tunneling"})
+    summary[key] = nullptr;
   summary["nan_steps"] = nan_steps;
   summary["dynamics_ms"] = distribution_json(dynamics_ms);
   summary["kinetic_energy_final"] = world.kinetic_energy_j();
