@@ -16,6 +16,8 @@ constexpr double kEpsilon = 0x1p-53;  // half an ulp of 1.0
 constexpr double kSplitter = 0x1p27 + 1.0;
 // Error bound of the filtered evaluation (orient3d "stage A").
 constexpr double kOrient3dErrorBound = (7.0 + 56.0 * kEpsilon) * kEpsilon;
+// Error bound of a 2x2 determinant of differences (orient2d "stage A").
+constexpr double kDet2ErrorBound = (3.0 + 16.0 * kEpsilon) * kEpsilon;
 
 // Capacity of the largest expansion formed below: a difference is 2 terms, a
 // product of two differences 8, a 2x2 minor 16, a minor times a difference 64,
@@ -164,6 +166,21 @@ int orient3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Ve
   if (det > bound) return -1;
   if (-det > bound) return 1;
   return orient3d_exact(a, b, c, d);
+}
+
+int cross_product_sign(const Eigen::Vector3d& from1, const Eigen::Vector3d& to1, const Eigen::Vector3d& from2,
+                       const Eigen::Vector3d& to2, int axis) {
+  const int j = (axis + 1) % 3, k = (axis + 2) % 3;
+  const double u_j = to1[j] - from1[j], u_k = to1[k] - from1[k];
+  const double v_j = to2[j] - from2[j], v_k = to2[k] - from2[k];
+  const double left = u_j * v_k, right = u_k * v_j;
+  const double det = left - right;
+  const double bound = kDet2ErrorBound * (std::fabs(left) + std::fabs(right));
+  if (det > bound) return 1;
+  if (-det > bound) return -1;
+  const Expansion exact = sum(product(difference(to1[j], from1[j]), difference(to2[k], from2[k])),
+                              negate(product(difference(to1[k], from1[k]), difference(to2[j], from2[j]))));
+  return sign_of(exact);
 }
 
 }  // namespace tcb

@@ -34,4 +34,11 @@ int orient3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Ve
 int orient3d_exact(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                    const Eigen::Vector3d& d);
 
+/// Exact sign of component `axis` (0 x, 1 y, 2 z) of the cross product
+/// (to1 - from1) x (to2 - from2). The symbolic perturbations of the collision
+/// predicates reduce to these signs when a determinant is exactly zero.
+/// Same contract as orient3d (exact for finite, non-underflowing input).
+int cross_product_sign(const Eigen::Vector3d& from1, const Eigen::Vector3d& to1, const Eigen::Vector3d& from2,
+                       const Eigen::Vector3d& to2, int axis);
+
 }  // namespace tcb

@@ -1,0 +1,55 @@
+#include "method/geometry/perturbed_predicates.hpp"
+
+#include <algorithm>
+
+#include "sim/geometry/orient3d.hpp"
+
+namespace tcb {
+
+int orient3d_perturbed_point(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& p) {
+  // orient3d(a, b, c, p + delta) = n . (p - a) + n . delta with n = (b - a) x (c - a).
+  if (const int s = orient3d(a, b, c, p); s != 0) return s;
+  for (int axis = 0; axis < 3; ++axis)
+    if (const int s = cross_product_sign(a, b, a, c, axis); s != 0) return s;
+  return 0;
+}
+
+int orient3d_perturbed_edge(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b) {
+  // orient3d(p + delta, q + delta, a, b) = orient3d(p, q, a, b) + ((q - p) x (b - a)) . delta.
+  if (const int s = orient3d(p, q, a, b); s != 0) return s;
+  for (int axis = 0; axis < 3; ++axis)
+    if (const int s = cross_product_sign(p, q, a, b, axis); s != 0) return s;
+  return 0;
+}
+
+bool point_in_tet_perturbed(const Vec3& p, const Vec3& v0, const Vec3& v1, const Vec3& v2, const Vec3& v3) {
+  // Inside iff p + delta is on the inner side of all four outward faces
+  // (the faces of tet_faces(): face k opposite vertex k).
+  if (orient3d_perturbed_point(v1, v2, v3, p) >= 0) return false;
+  if (orient3d_perturbed_point(v0, v3, v2, p) >= 0) return false;
+  if (orient3d_perturbed_point(v0, v1, v3, p) >= 0) return false;
+  if (orient3d_perturbed_point(v0, v2, v1, p) >= 0) return false;
+  return true;
+}
+
+bool segment_crosses_triangle_perturbed(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const int sp = orient3d_perturbed_point(a, b, c, p);
+  const int sq = orient3d_perturbed_point(a, b, c, q);
+  if (sp == 0 || sq == 0 || sp == sq) return false;  // degenerate triangle, or both ends on one side
+  // The crossing point is inside the triangle iff the segment's line passes
+  // each triangle edge on the same side.
+  const int s_ab = orient3d_perturbed_edge(p, q, a, b);
+  const int s_bc = orient3d_perturbed_edge(p, q, b, c);
+  const int s_ca = orient3d_perturbed_edge(p, q, c, a);
+  return s_ab != 0 && s_ab == s_bc && s_bc == s_ca;
+}
+
+double segment_plane_parameter(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 n = (b - a).cross(c - a);
+  const double op = n.dot(p - a), oq = n.dot(q - a);
+  const double denominator = op - oq;
+  if (denominator == 0.0) return 0.0;
+  return std::clamp(op / denominator, 0.0, 1.0);
+}
+
+}  // namespace tcb
