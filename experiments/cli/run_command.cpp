@@ -43,6 +43,7 @@ class RunCommand final : public Command {
     for (const auto& o : m_options.overrides) m_options.command_line += " --set " + o;
     ProgressLine progress(fmt::format("{} [{}]", scene.name, m_options.method), !m_quiet && stderr_is_terminal());
     m_options.on_step = [&](std::int64_t done, std::int64_t total) { progress.update(done, total); };
+    m_options.on_warning = [](const std::string& w) { std::cerr << "tcbench: warning: " << w << '\n'; };
     const RunOutcome outcome = run_scene(scene, m_options);
     progress.finish();
     if (outcome.status != "ok") {

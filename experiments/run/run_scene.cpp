@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "baselines/registry.hpp"
 #include "experiments/metrics/distribution.hpp"
 #include "experiments/results/steps_csv.hpp"
 #include "experiments/run/provenance.hpp"
@@ -64,29 +65,31 @@ Json scene_json(const SceneDesc& scene, const World& world) {
 }  // namespace
 
 std::vector<std::pair<std::string, std::string>> available_methods() {
-  return {{"none", "no collision handling: objects pass through each other (dynamics and ground only)"}};
+  std::vector<std::pair<std::string, std::string>> methods;
+  for (const MethodInfo& m : method_registry()) methods.emplace_back(m.name, m.description);
+  return methods;
 }
 
 RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
-  bool known = false;
-  std::string names;
-  for (const auto& [name, description] : available_methods()) {
-    known |= name == options.method;
-    names += (names.empty() ? "" : ", ") + name;
-  }
-  if (!known) throw InputError("--method", 0, "unknown method '" + options.method + "' (available: " + names + ")");
   const std::int64_t steps_total = options.steps.value_or(scene.steps);
   if (steps_total < 0) throw InputError("--steps", 0, "must not be negative");
 
   // Everything that can fail on bad input happens before the directory exists.
+  std::unique_ptr<CollisionHandler> handler = make_handler(options.method, scene);
   World world = build_world(scene);
+  handler->init(world, scene);  // not timed
+  const std::vector<std::string> warnings = handler->warnings();
+  if (options.on_warning)
+    for (const auto& w : warnings) options.on_warning(w);
   std::filesystem::create_directories(options.out_dir);
   const std::string started_at = utc_timestamp();
   const auto run_start = Clock::now();
 
   StepsCsv csv(options.out_dir / "steps.csv");
-  std::vector<double> dynamics_ms;
-  std::vector<double> solver_iterations;
+  std::vector<double> dynamics_ms, handling_ms;
+  std::vector<double> solver_iterations, cycle_lengths;
+  std::int64_t cycle_start_step = 1, depth_fallback_total = 0, colliding_max = 0;
+  std::uint64_t work_total = 0;
   std::int64_t unconverged_steps = 0, nan_steps = 0;
   std::vector<PvdFrame> frames;
   RunOutcome outcome{"ok", "", 0, 0.0};
@@ -102,11 +105,29 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
   record(0);
 
   for (std::int64_t s = 0; s < steps_total; ++s) {
+    StepRow row;
+    Budget budget = Budget::unlimited();
+    const auto t_handler = Clock::now();
+    const StepReport report = handler->step(world, budget);
+    row.handling_ms = ms_since(t_handler);
     const auto t0 = Clock::now();
     world.step(scene.dt_s);
-    StepRow row;
     row.dynamics_ms = ms_since(t0);
     row.step = world.step_index;
+    row.work_units = static_cast<std::int64_t>(report.work_units);
+    row.cycle = report.cycle;
+    row.cycle_done = report.cycle_done ? 1 : 0;
+    row.colliding_points = report.colliding_points;
+    row.exact_forces = report.exact_forces;
+    row.estimated_forces = report.estimated_forces;
+    handling_ms.push_back(*row.handling_ms);
+    work_total += report.work_units;
+    depth_fallback_total += report.depth_fallback;
+    colliding_max = std::max(colliding_max, report.colliding_points);
+    if (report.cycle_done) {
+      cycle_lengths.push_back(static_cast<double>(row.step - cycle_start_step + 1));
+      cycle_start_step = row.step + 1;
+    }
     row.time_s = world.time_s;
     row.kinetic_energy = world.kinetic_energy_j();
     for (const Body& b : world.bodies) {
@@ -137,11 +158,22 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
   outcome.wall_s = ms_since(run_start) / 1000.0;
 
   Json summary;
-  // Not measured without a collision handler and the oracle: null, never 0.
-  for (const char* key : {"handling_ms", "overshoot_pct", "cycle_steps", "latency_steps", "recall_min", "recall_mean",
-                          "precision_min", "depth_err", "max_depth", "overlap_volume_max", "jitter", "tunneling"})
+  summary["handling_ms"] = distribution_json(handling_ms);
+  summary["overshoot_pct"] = nullptr;  // no wall budget
+  if (cycle_lengths.empty()) {
+    summary["cycle_steps"] = nullptr;
+  } else {
+    const Distribution cycles = summarize(cycle_lengths);
+    summary["cycle_steps"] = {{"mean", cycles.mean}, {"max", cycles.max}};
+  }
+  // Measured by the oracle (not run yet): null, never 0.
+  for (const char* key : {"latency_steps", "recall_min", "recall_mean", "precision_min", "depth_err", "max_depth",
+                          "overlap_volume_max", "jitter", "tunneling"})
     summary[key] = nullptr;
   summary["nan_steps"] = nan_steps;
+  summary["work_units_total"] = work_total;
+  summary["colliding_points_max"] = colliding_max;
+  summary["depth_fallback_points"] = depth_fallback_total;
   summary["dynamics_ms"] = distribution_json(dynamics_ms);
   summary["kinetic_energy_final"] = world.kinetic_energy_j();
   const Distribution iterations = summarize(solver_iterations);
@@ -164,6 +196,7 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
   run["machine"] = machine_info();
   run["started_at"] = started_at;
   run["wall_s"] = outcome.wall_s;
+  run["warnings"] = warnings;
   run["status"] = outcome.status;
   run["unstable_reason"] = outcome.reason.empty() ? Json(nullptr) : Json(outcome.reason);
   run["world"] = scene_json(scene, world);

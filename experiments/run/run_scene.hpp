@@ -20,7 +20,7 @@
 namespace tcb {
 
 struct RunOptions {
-  std::string method = "none";
+  std::string method = "full";
   std::optional<std::int64_t> steps;  ///< overrides the scene's step count
   std::uint64_t seed = 0;
   std::filesystem::path out_dir;
@@ -29,6 +29,8 @@ struct RunOptions {
   int record_every = 0;                ///< write a VTU frame every N steps (0: none)
   /// Called after every step with (steps done, steps total); for progress.
   std::function<void(std::int64_t, std::int64_t)> on_step;
+  /// Called once per warning about the settings (also recorded in run.json).
+  std::function<void(const std::string&)> on_warning;
 };
 
 struct RunOutcome {

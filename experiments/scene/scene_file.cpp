@@ -9,6 +9,7 @@
 #include <set>
 #include <sstream>
 
+#include "baselines/registry.hpp"
 #include "sim/io/atomic_file.hpp"
 #include "sim/io/input_error.hpp"
 
@@ -206,6 +207,8 @@ ObjectDesc read_object(const toml::table& table, std::size_t index, const std::f
       else s.fail("axis", "must be \"x\", \"y\" or \"z\"");
     }
     o.stack.gap_m = s.non_negative("gap", 0.0);
+    o.stack.stagger_m = s.vec3("stagger").value_or(Vec3::Zero());
+    if (o.stack.stagger_m[o.stack.axis] != 0.0) s.fail("stagger", "must be 0 along the stacking axis");
     s.finish();
   }
   named.finish();
@@ -286,6 +289,8 @@ void apply_override(toml::table& root, const std::string& assignment, Origins& o
 
 SceneDesc parse_scene(const std::string& text, const std::filesystem::path& path,
                       const std::vector<std::string>& overrides) {
+  std::vector<std::string> method_names;
+  for (const MethodInfo& m : method_registry()) method_names.push_back(m.name);
   Origins file{path.string(), {}};
   toml::table root;
   try {
@@ -328,10 +333,51 @@ SceneDesc parse_scene(const std::string& text, const std::filesystem::path& path
         scene.collision.cell_size_m = size;
       }
     }
+    if (const auto hash = r.string("hash")) {
+      if (*hash != "mixed" && *hash != "paper") r.fail("hash", "must be \"mixed\" or \"paper\"");
+      scene.collision.hash = *hash;
+    }
+    scene.collision.table_size =
+        static_cast<std::size_t>(r.integer("table_size", 0, std::int64_t(1) << 32).value_or(0));
     scene.collision.response_stiffness_n_per_m =
         r.non_negative("response_stiffness", scene.collision.response_stiffness_n_per_m);
+    scene.collision.damping_n_s_per_m = r.non_negative("damping", scene.collision.damping_n_s_per_m);
     scene.collision.friction = r.non_negative("friction", scene.collision.friction);
+    if (const toml::node* pairs = r.node("pair")) {
+      const toml::array* array = pairs->as_array();
+      if (!array || !array->is_array_of_tables()) r.fail("pair", "must be an array of tables: write [[collision.pair]]");
+      for (std::size_t i = 0; i < array->size(); ++i) {
+        const toml::table& t = *(*array)[i].as_table();
+        TableReader pr(t, "collision.pair[" + std::to_string(i) + "]", file);
+        CollisionPairDesc pair;
+        pair.source_line = where_of(t, file).line;
+        const toml::node* names = pr.node("objects");
+        const toml::array* list = names ? names->as_array() : nullptr;
+        if (!list || list->size() != 2 || !(*list)[0].is_string() || !(*list)[1].is_string())
+          pr.fail("objects", "must name two objects: objects = [\"a\", \"b\"]");
+        pair.a = *(*list)[0].value<std::string>();
+        pair.b = *(*list)[1].value<std::string>();
+        if (const auto v = pr.number("response_stiffness")) pair.stiffness_n_per_m = pr.non_negative("response_stiffness", *v);
+        if (const auto v = pr.number("damping")) pair.damping_n_s_per_m = pr.non_negative("damping", *v);
+        if (const auto v = pr.number("friction")) pair.friction = pr.non_negative("friction", *v);
+        pr.finish();
+        scene.collision.pairs.push_back(pair);
+      }
+    }
     r.finish();
+  }
+  for (const std::string& method : method_names) {
+    const toml::table* t = top.table(method);
+    if (!t) continue;
+    for (auto&& [key, node] : *t) {
+      const Where w = where_of(node, file);
+      MethodSetting setting{0.0, w.line > 0 ? w.file + ":" + std::to_string(w.line) : w.file};
+      if (node.is_number()) setting.value = *node.value<double>();
+      else if (node.is_boolean()) setting.value = *node.value<bool>();
+      else if (node.is_string()) setting.value = *node.value<std::string>();
+      else throw InputError(w.file, w.line, method + "." + std::string(key.str()) + ": must be a number, boolean or string");
+      scene.methods[method][std::string(key.str())] = setting;
+    }
   }
   if (const toml::node* objects = top.node("object")) {
     const toml::array* array = objects->as_array();

@@ -9,6 +9,7 @@
 ///   object.plate.material.youngs_modulus=2e5   an object by name ...
 ///   object.0.scale=2                       ... or by index
 ///   ground.height=0.1                      creates [ground] if absent
+///   every_nth.n=3                          a method's setting (its own table)
 /// The value is read as TOML (numbers, booleans, arrays, "strings"); a bare
 /// word that is not TOML is taken as a string (model=mass_spring).
 

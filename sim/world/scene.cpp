@@ -28,6 +28,7 @@ Body make_body(const std::string& name, const ObjectDesc& object, std::shared_pt
                std::vector<Vec3> x) {
   Body body;
   body.name = name;
+  body.group = object.name;
   body.mesh = std::move(mesh);
   body.v_m_per_s.assign(x.size(), object.velocity_m_per_s);
   body.contact_force_n.assign(x.size(), Vec3::Zero());
@@ -68,7 +69,8 @@ World build_world(const SceneDesc& scene) {
     Vec3 offset = object.position_m;
     for (int copy = 0; copy < object.stack.count; ++copy) {
       std::vector<Vec3> x(scaled);
-      for (Vec3& p : x) p += offset;
+      const Vec3 shift = copy % 2 ? Vec3(offset + object.stack.stagger_m) : offset;
+      for (Vec3& p : x) p += shift;
       world.bodies.push_back(make_body(fmt::format("{}_{:02d}", object.name, copy), object, mesh, std::move(x)));
       offset[axis] += step;
     }

@@ -11,10 +11,15 @@
 /// p_{i+1} = p_i + extent, and so the top face of copy i (extent + p_i) and the
 /// bottom face of copy i+1 (0 + p_{i+1}) are the same doubles. This is the
 /// face-on-face stack of seed 000 (plates20), where every step the collision
-/// stages meet points exactly on faces.
+/// stages meet points exactly on faces. stack.stagger shifts every odd copy
+/// sideways: with side faces exactly aligned too, whole rows of vertices lie
+/// exactly on the neighbour's side faces, where any consistent tie-break puts
+/// them outside from both sides, so those edges would carry no contact.
 
 #include <filesystem>
+#include <map>
 #include <optional>
+#include <variant>
 #include <string>
 #include <vector>
 
@@ -26,6 +31,9 @@ struct StackDesc {
   int count = 1;
   int axis = 1;  ///< 0 x, 1 y, 2 z
   double gap_m = 0.0;
+  /// Added to every odd copy, across the stacking axis (its component along
+  /// the axis must be 0, so faces still touch exactly).
+  Vec3 stagger_m = Vec3::Zero();
 };
 
 struct ObjectDesc {
@@ -42,11 +50,33 @@ struct ObjectDesc {
   StackDesc stack;
 };
 
+/// Response parameters for one pair of objects ([[collision.pair]]); a name
+/// matches a body or the object a stack was made from.
+struct CollisionPairDesc {
+  std::string a, b;
+  std::optional<double> stiffness_n_per_m, damping_n_s_per_m, friction;
+  int source_line = 0;
+};
+
+/// The [collision] table as plain data; the collision handlers interpret it.
 struct CollisionDesc {
   std::optional<double> cell_size_m;  ///< nullopt = "auto" (average edge length)
+  std::string hash = "mixed";         ///< "mixed" or "paper" (Teschner et al. 2003)
+  std::size_t table_size = 0;         ///< 0 = automatic (a prime above twice the tet count)
   double response_stiffness_n_per_m = 1.0e4;
+  double damping_n_s_per_m = 0.0;
   double friction = 0.3;
+  std::vector<CollisionPairDesc> pairs;
 };
+
+/// Settings of collision handling methods, from top-level tables named after
+/// a method ([every_nth] n = 2, or --set every_nth.n=2). Each value keeps
+/// where it was written, for error messages.
+struct MethodSetting {
+  std::variant<double, bool, std::string> value;
+  std::string where;  ///< "file:line" or "--set key=value"
+};
+using MethodSettings = std::map<std::string, std::map<std::string, MethodSetting>>;
 
 struct SceneDesc {
   std::string name;
@@ -56,6 +86,7 @@ struct SceneDesc {
   Vec3 gravity_m_per_s2 = Vec3(0.0, -9.81, 0.0);
   std::optional<GroundPlane> ground;
   CollisionDesc collision;
+  MethodSettings methods;
   std::vector<ObjectDesc> objects;
   /// A vertex faster than this marks the run unstable (an explosion).
   double max_speed_m_per_s = 1.0e3;

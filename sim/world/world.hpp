@@ -21,6 +21,7 @@ namespace tcb {
 
 struct Body {
   std::string name;
+  std::string group;                    ///< the scene object it came from (stacks share one)
   std::shared_ptr<const TetMesh> mesh;  ///< topology; shared by copies of one mesh
   std::vector<Vec3> x_m;                ///< current positions
   std::vector<Vec3> v_m_per_s;

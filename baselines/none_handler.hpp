@@ -1,0 +1,20 @@
+#pragma once
+/// `none`: no collision handling at all. Objects pass through each other; the
+/// ground still holds them. The floor every other method is compared with.
+
+#include "method/handler/collision_handler.hpp"
+
+namespace tcb {
+
+class NoneHandler final : public CollisionHandler {
+ public:
+  std::string_view name() const override { return "none"; }
+  void init(const World&, const SceneDesc&) override {}
+  StepReport step(World&, Budget&) override { return {}; }
+  const std::vector<Contact>& contacts() const override { return m_none; }
+
+ private:
+  std::vector<Contact> m_none;
+};
+
+}  // namespace tcb

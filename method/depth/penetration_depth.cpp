@@ -1,0 +1,113 @@
+#include "method/depth/penetration_depth.hpp"
+
+#include <cmath>
+
+#include "method/geometry/perturbed_predicates.hpp"
+#include "method/handler/work_units.hpp"
+
+namespace tcb {
+
+SurfaceHash::SurfaceHash(const World& world, double cell_size_m, HashFunction hash) {
+  std::uint32_t total = 0;
+  for (std::size_t b = 0; b < world.bodies.size(); ++b) {
+    m_offset.push_back(total);
+    const auto n = world.bodies[b].mesh->surface.size();
+    total += static_cast<std::uint32_t>(n);
+    m_owner.insert(m_owner.end(), n, static_cast<std::int32_t>(b));
+  }
+  m_seen.assign(total, 0);
+  m_hash = SpatialHash(cell_size_m, next_prime(2 * std::size_t(total) + 1), hash);
+}
+
+std::uint64_t SurfaceHash::hash_triangle(const World& world, std::int32_t body, std::int32_t triangle) {
+  const auto& x = world.bodies[body].x_m;
+  const Triangle& f = world.bodies[body].mesh->surface[triangle];
+  const Vec3 lo = x[f[0]].cwiseMin(x[f[1]]).cwiseMin(x[f[2]]);
+  const Vec3 hi = x[f[0]].cwiseMax(x[f[1]]).cwiseMax(x[f[2]]);
+  return work::kCellInsert * m_hash.insert_box(lo, hi, m_offset[body] + static_cast<std::uint32_t>(triangle));
+}
+
+std::uint64_t border_point_depth(const World& world, Contact& c, const std::vector<Contact>& contacts,
+                                 const ContactLookup& lookup, SurfaceHash& surface) {
+  std::uint64_t work = work::kBorderPoint;
+  const Body& A = world.bodies[c.object];
+  const Body& B = world.bodies[c.other];
+  const Vec3& p = A.x_m[c.vertex];
+  double sum_w = 0.0, sum_wd = 0.0;
+  Vec3 sum_wn = Vec3::Zero(), sum_coincident = Vec3::Zero();
+  bool coincident = false;
+  for (const std::int32_t* q_it = A.mesh->vertex_neighbours.begin(c.vertex);
+       q_it != A.mesh->vertex_neighbours.end(c.vertex); ++q_it) {
+    const std::int32_t qi = lookup[c.object][*q_it];
+    if (qi >= 0 && contacts[qi].other == c.other) continue;  // both inside B: not a border edge
+    const Vec3& q = A.x_m[*q_it];
+    double best_t = -1.0;
+    Vec3 best_normal = Vec3::Zero();
+    surface.for_each_candidate(c.other, p.cwiseMin(q), p.cwiseMax(q), [&](std::int32_t tri) {
+      work += work::kCandidate;
+      const Triangle& f = B.mesh->surface[tri];
+      const Vec3 &a = B.x_m[f[0]], &b = B.x_m[f[1]], &cc = B.x_m[f[2]];
+      if (!segment_crosses_triangle_perturbed(p, q, a, b, cc)) return;
+      const double t = segment_plane_parameter(p, q, a, b, cc);
+      if (t > best_t) {
+        best_t = t;
+        best_normal = (b - a).cross(cc - a).normalized();
+      }
+    });
+    if (best_t < 0.0) continue;  // no crossing found through this edge
+    const Vec3 x = p + best_t * (q - p);
+    const double dist2 = (x - p).squaredNorm();
+    const double w = 1.0 / dist2;
+    if (!std::isfinite(w)) {
+      coincident = true;
+      sum_coincident += best_normal;
+      continue;
+    }
+    sum_w += w;
+    sum_wd += w * (x - p).dot(best_normal);
+    sum_wn += w * best_normal;
+  }
+  if (coincident && sum_coincident.squaredNorm() > 0.0) {
+    c.depth_m = 0.0;
+    c.direction = sum_coincident.normalized();
+  } else if (sum_w > 0.0 && sum_wn.squaredNorm() > 0.0) {
+    c.depth_m = sum_wd / sum_w;
+    c.direction = sum_wn.normalized();
+  } else {
+    return work;  // no crossing, or normals that cancel: no border depth
+  }
+  c.depth_source = DepthSource::Border;
+  c.layer = 0;
+  return work;
+}
+
+std::uint64_t propagate_depth(const World& world, Contact& c, const std::vector<Contact>& contacts,
+                              const ContactLookup& lookup, std::int32_t layer) {
+  std::uint64_t work = work::kPropagation;
+  const Body& A = world.bodies[c.object];
+  const Vec3& p = A.x_m[c.vertex];
+  double sum_mu = 0.0, sum_mu_d = 0.0;
+  Vec3 sum_mu_r = Vec3::Zero();
+  for (const std::int32_t* j = A.mesh->vertex_neighbours.begin(c.vertex); j != A.mesh->vertex_neighbours.end(c.vertex);
+       ++j) {
+    work += work::kNeighbour;
+    const std::int32_t ci = lookup[c.object][*j];
+    if (ci < 0) continue;
+    const Contact& n = contacts[ci];
+    if (n.other != c.other || n.depth_source == DepthSource::None || n.layer >= layer) continue;
+    const Vec3 offset = A.x_m[*j] - p;
+    const double mu = 1.0 / offset.squaredNorm();
+    if (!std::isfinite(mu)) continue;  // coincident vertices: no direction to weigh
+    sum_mu += mu;
+    sum_mu_d += mu * (offset.dot(n.direction) + n.depth_m);
+    sum_mu_r += mu * n.direction;
+  }
+  if (!(sum_mu > 0.0) || !(sum_mu_r.squaredNorm() > 0.0)) return work;
+  c.depth_m = sum_mu_d / sum_mu;
+  c.direction = sum_mu_r.normalized();
+  c.depth_source = DepthSource::Propagated;
+  c.layer = layer;
+  return work;
+}
+
+}  // namespace tcb

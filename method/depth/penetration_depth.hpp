@@ -1,0 +1,72 @@
+#pragma once
+/// Consistent penetration depth (Heidelberger, Teschner, Keiser, Mueller,
+/// Gross, "Consistent Penetration Depth Estimation for Deformable Collision
+/// Response", VMV 2004), as in METHOD.md s.3, in three resumable tasks:
+///
+/// - SurfaceHash::hash_triangle(): one surface triangle of a body that some
+///   point collides with, at its current positions.
+/// - border_point_depth(): for one colliding point p (of A, inside B), every
+///   border edge (p, q) with q not colliding with B is intersected with B's
+///   surface triangles found through the surface hash (exact perturbed test,
+///   so an edge through a surface vertex or along a surface edge meets exactly
+///   one triangle); of several crossings the one farthest from p is kept. With
+///   crossings x_i, face normals n_i and w_i = 1/|x_i - p|^2:
+///     d = sum w_i (x_i - p).n_i / sum w_i,   r = normalize(sum w_i n_i).
+///   A crossing exactly at p (p on B's surface, as in the face-on-face plate
+///   stack) has infinite weight: then d = 0 and r is the mean of those normals.
+/// - propagate_depth(): for a colliding point with no depth, from neighbours
+///   p_j with a depth from an earlier layer, mu_j = 1/|p_j - p|^2:
+///     r = normalize(sum mu_j r_j),   d = sum mu_j ((p_j - p).r_j + d_j) / sum mu_j.
+/// Normals are the triangles' face normals (not interpolated vertex normals).
+/// A colliding point that no border path reaches (e.g. an object wholly inside
+/// another) keeps DepthSource::None: it gets no depth-based force and is
+/// counted by the caller (StepReport::depth_fallback).
+/// Units: metres; depth positive inside B.
+
+#include "method/detection/spatial_hash.hpp"
+#include "method/handler/contact.hpp"
+#include "sim/world/world.hpp"
+
+namespace tcb {
+
+/// For each body, the index of each vertex's contact in the contact list (-1: none).
+using ContactLookup = std::vector<std::vector<std::int32_t>>;
+
+class SurfaceHash {
+ public:
+  SurfaceHash(const World& world, double cell_size_m, HashFunction hash);
+  void begin_epoch() { m_hash.begin_epoch(); }
+  /// Hashes one surface triangle at the current positions; returns work units.
+  std::uint64_t hash_triangle(const World& world, std::int32_t body, std::int32_t triangle);
+
+  /// Calls f(triangle) for each distinct triangle of `body` hashed in the cells of [lo, hi].
+  template <typename F>
+  void for_each_candidate(std::int32_t body, const Vec3& lo, const Vec3& hi, F&& f) {
+    ++m_query;
+    m_hash.for_each_in_box(lo, hi, [&](std::uint32_t id) {
+      if (m_owner[id] != body || m_seen[id] == m_query) return;
+      m_seen[id] = m_query;
+      f(static_cast<std::int32_t>(id - m_offset[body]));
+    });
+  }
+
+ private:
+  SpatialHash m_hash;
+  std::vector<std::uint32_t> m_offset;
+  std::vector<std::int32_t> m_owner;
+  std::vector<std::uint64_t> m_seen;
+  std::uint64_t m_query = 0;
+};
+
+/// Border-point depth of one contact (see file comment). Sets depth,
+/// direction, source Border and layer 0 when p has a border edge that crosses
+/// B's surface; leaves the contact without depth otherwise. Returns work units.
+std::uint64_t border_point_depth(const World& world, Contact& contact, const std::vector<Contact>& contacts,
+                                 const ContactLookup& lookup, SurfaceHash& surface);
+
+/// Propagated depth of one contact at `layer` >= 1 from neighbours whose depth
+/// comes from layers below it. Returns work units.
+std::uint64_t propagate_depth(const World& world, Contact& contact, const std::vector<Contact>& contacts,
+                              const ContactLookup& lookup, std::int32_t layer);
+
+}  // namespace tcb

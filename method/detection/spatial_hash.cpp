@@ -1,0 +1,76 @@
+#include "method/detection/spatial_hash.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace tcb {
+
+std::uint64_t hash_cell(HashFunction function, std::int64_t i, std::int64_t j, std::int64_t k) {
+  const auto ui = static_cast<std::uint64_t>(i), uj = static_cast<std::uint64_t>(j),
+             uk = static_cast<std::uint64_t>(k);
+  if (function == HashFunction::Paper) return (ui * 73856093ULL) ^ (uj * 19349663ULL) ^ (uk * 83492791ULL);
+  std::uint64_t z = ui * 0x9E3779B97F4A7C15ULL + uj * 0xC2B2AE3D27D4EB4FULL + uk * 0x165667B19E3779F9ULL;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  return z ^ (z >> 31);
+}
+
+std::uint64_t next_prime(std::uint64_t n) {
+  if (n <= 2) return 2;
+  for (std::uint64_t c = n | 1;; c += 2) {
+    bool prime = true;
+    for (std::uint64_t d = 3; d * d <= c; d += 2)
+      if (c % d == 0) {
+        prime = false;
+        break;
+      }
+    if (prime) return c;
+  }
+}
+
+SpatialHash::SpatialHash(double cell_size_m, std::size_t table_size, HashFunction function)
+    : m_cell_size(cell_size_m), m_inverse_cell(1.0 / cell_size_m), m_function(function),
+      m_head(std::max<std::size_t>(table_size, 1), -1), m_stamp(m_head.size(), 0) {
+  if (!(cell_size_m > 0.0) || !std::isfinite(cell_size_m))
+    throw std::invalid_argument("spatial hash cell size must be positive and finite");
+}
+
+void SpatialHash::begin_epoch() {
+  ++m_epoch;
+  if (m_epoch == 0) {  // wrapped after 2^32 epochs: reset the stamps once
+    std::fill(m_stamp.begin(), m_stamp.end(), 0);
+    m_epoch = 1;
+  }
+  m_entries.clear();
+}
+
+std::int64_t SpatialHash::cell_of(double x) const {
+  constexpr double kLimit = 1125899906842624.0;  // 2^50
+  return static_cast<std::int64_t>(std::clamp(std::floor(x * m_inverse_cell), -kLimit, kLimit));
+}
+
+std::size_t SpatialHash::insert_box(const Vec3& lo, const Vec3& hi, std::uint32_t item) {
+  const std::int64_t i0 = cell_of(lo.x()), i1 = cell_of(hi.x()), j0 = cell_of(lo.y()), j1 = cell_of(hi.y()),
+                     k0 = cell_of(lo.z()), k1 = cell_of(hi.z());
+  std::size_t cells = 0;
+  for (std::int64_t i = i0; i <= i1; ++i)
+    for (std::int64_t j = j0; j <= j1; ++j)
+      for (std::int64_t k = k0; k <= k1; ++k) {
+        const std::size_t b = bucket_of(i, j, k);
+        if (m_stamp[b] != m_epoch) {
+          m_stamp[b] = m_epoch;
+          m_head[b] = -1;
+        }
+        m_entries.push_back({item, m_head[b]});
+        m_head[b] = static_cast<std::int32_t>(m_entries.size() - 1);
+        ++cells;
+      }
+  return cells;
+}
+
+std::size_t SpatialHash::occupied_buckets() const {
+  return static_cast<std::size_t>(std::count(m_stamp.begin(), m_stamp.end(), m_epoch));
+}
+
+}  // namespace tcb

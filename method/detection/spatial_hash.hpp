@@ -1,0 +1,94 @@
+#pragma once
+/// Spatial hashing over an infinite uniform grid (Teschner et al., "Optimized
+/// Spatial Hashing for Collision Detection of Deformable Objects", VMV 2003).
+///
+/// Items (tets, triangles: any 32-bit id) are inserted into every grid cell
+/// their axis-aligned box overlaps; cell (i, j, k) = floor(x / cell_size) maps
+/// to one of `table_size` buckets (a prime) by one of two hash functions:
+/// - HashFunction::Paper: ((i * 73856093) xor (j * 19349663) xor (k * 83492791))
+///   mod n, computed in unsigned 64-bit arithmetic (the paper's, kept for
+///   comparison; symmetric around the origin: (-10,-1,9) and (-10,1,-9)
+///   collide, and stacked plates sit exactly there);
+/// - HashFunction::Mixed (default): a multiply-add of the cell indices followed
+///   by the 64-bit splitmix finaliser, mod n.
+/// Buckets are time-stamped: begin_epoch() empties the whole table in O(1) (a
+/// bucket whose stamp is older counts as empty), so nothing is cleared per step.
+/// A bucket may hold items of other cells (hash collisions) and an item several
+/// times (several of its cells in one bucket): callers filter by their own
+/// exact tests and de-duplicate.
+/// Contract: coordinates must be finite; cell indices are clamped to +-2^50,
+/// far beyond any scene (positions are in metres).
+
+#include <cstdint>
+#include <vector>
+
+#include "sim/mesh/tet_mesh.hpp"
+
+namespace tcb {
+
+enum class HashFunction { Paper, Mixed };
+
+std::uint64_t hash_cell(HashFunction function, std::int64_t i, std::int64_t j, std::int64_t k);
+
+/// Smallest prime >= n (n >= 2).
+std::uint64_t next_prime(std::uint64_t n);
+
+class SpatialHash {
+ public:
+  SpatialHash() = default;
+  SpatialHash(double cell_size_m, std::size_t table_size, HashFunction function);
+
+  /// Empties the table in O(1).
+  void begin_epoch();
+  /// Inserts item into every cell its box [lo, hi] overlaps; returns the
+  /// number of cells (each a unit of work).
+  std::size_t insert_box(const Vec3& lo, const Vec3& hi, std::uint32_t item);
+
+  /// Calls f(item) for every entry of the bucket of point p's cell.
+  template <typename F>
+  void for_each_in_cell(const Vec3& p, F&& f) const {
+    for_each_in_bucket(bucket_of(cell_of(p.x()), cell_of(p.y()), cell_of(p.z())), f);
+  }
+  /// Calls f(item) for every entry of every bucket of the cells box [lo, hi]
+  /// overlaps; returns the number of cells visited.
+  template <typename F>
+  std::size_t for_each_in_box(const Vec3& lo, const Vec3& hi, F&& f) const {
+    const std::int64_t i0 = cell_of(lo.x()), i1 = cell_of(hi.x()), j0 = cell_of(lo.y()), j1 = cell_of(hi.y()),
+                       k0 = cell_of(lo.z()), k1 = cell_of(hi.z());
+    for (std::int64_t i = i0; i <= i1; ++i)
+      for (std::int64_t j = j0; j <= j1; ++j)
+        for (std::int64_t k = k0; k <= k1; ++k) for_each_in_bucket(bucket_of(i, j, k), f);
+    return static_cast<std::size_t>((i1 - i0 + 1) * (j1 - j0 + 1) * (k1 - k0 + 1));
+  }
+
+  double cell_size_m() const { return m_cell_size; }
+  std::size_t table_size() const { return m_head.size(); }
+  std::size_t entry_count() const { return m_entries.size(); }
+  /// Buckets holding at least one entry in the current epoch.
+  std::size_t occupied_buckets() const;
+
+ private:
+  struct Entry {
+    std::uint32_t item;
+    std::int32_t next;
+  };
+  std::int64_t cell_of(double x) const;
+  std::size_t bucket_of(std::int64_t i, std::int64_t j, std::int64_t k) const {
+    return static_cast<std::size_t>(hash_cell(m_function, i, j, k) % m_head.size());
+  }
+  template <typename F>
+  void for_each_in_bucket(std::size_t b, F& f) const {
+    if (m_stamp[b] != m_epoch) return;
+    for (std::int32_t e = m_head[b]; e >= 0; e = m_entries[e].next) f(m_entries[e].item);
+  }
+
+  double m_cell_size = 1.0;
+  double m_inverse_cell = 1.0;
+  HashFunction m_function = HashFunction::Mixed;
+  std::vector<std::int32_t> m_head;
+  std::vector<std::uint32_t> m_stamp;
+  std::uint32_t m_epoch = 1;
+  std::vector<Entry> m_entries;
+};
+
+}  // namespace tcb

@@ -1,0 +1,120 @@
+#include "method/detection/tet_hash_detection.hpp"
+
+#include <algorithm>
+
+#include "method/geometry/perturbed_predicates.hpp"
+#include "method/handler/work_units.hpp"
+
+namespace tcb {
+namespace {
+
+bool incident(const Tet& t, std::int32_t v) { return t[0] == v || t[1] == v || t[2] == v || t[3] == v; }
+
+Contact make_contact(const World& world, std::int32_t object, std::int32_t vertex, std::int32_t other,
+                     std::int32_t tet) {
+  const auto& x = world.bodies[other].x_m;
+  const Tet& t = world.bodies[other].mesh->tets[tet];
+  Contact c;
+  c.object = object;
+  c.vertex = vertex;
+  c.other = other;
+  c.tet = tet;
+  c.barycentric = barycentric_weights(world.bodies[object].x_m[vertex], x[t[0]], x[t[1]], x[t[2]], x[t[3]]);
+  return c;
+}
+
+std::vector<char> degenerate_flags(const TetMesh& mesh) {
+  std::vector<char> flags(mesh.tet_count(), 0);
+  for (auto id : mesh.degenerate_tet_ids) flags[id] = 1;
+  return flags;
+}
+
+}  // namespace
+
+TetHashDetector::TetHashDetector(const World& world, const DetectionSettings& settings) {
+  std::uint32_t total = 0;
+  for (std::size_t b = 0; b < world.bodies.size(); ++b) {
+    m_body_tet_offset.push_back(total);
+    total += static_cast<std::uint32_t>(world.bodies[b].mesh->tet_count());
+    m_owner.insert(m_owner.end(), world.bodies[b].mesh->tet_count(), static_cast<std::int32_t>(b));
+  }
+  m_tet_lo.resize(total);
+  m_tet_hi.resize(total);
+  m_tested.assign(total, 0);
+  const std::size_t table = settings.table_size ? settings.table_size : next_prime(2 * std::size_t(total) + 1);
+  m_hash = SpatialHash(settings.cell_size_m, table, settings.hash);
+}
+
+std::uint64_t TetHashDetector::hash_tets(const World& world) {
+  const CollisionPairs pairs(world);
+  m_hash.begin_epoch();
+  std::uint64_t work = 0;
+  for (std::size_t b = 0; b < world.bodies.size(); ++b) {
+    if (!pairs.has_partner(b)) continue;
+    const Body& body = world.bodies[b];
+    const auto degenerate = degenerate_flags(*body.mesh);
+    for (std::size_t t = 0; t < body.mesh->tet_count(); ++t) {
+      if (degenerate[t]) continue;
+      const Tet& tet = body.mesh->tets[t];
+      Vec3 lo = body.x_m[tet[0]], hi = lo;
+      for (int k = 1; k < 4; ++k) {
+        lo = lo.cwiseMin(body.x_m[tet[k]]);
+        hi = hi.cwiseMax(body.x_m[tet[k]]);
+      }
+      const std::uint32_t id = m_body_tet_offset[b] + static_cast<std::uint32_t>(t);
+      m_tet_lo[id] = lo;
+      m_tet_hi[id] = hi;
+      work += work::kCellInsert * m_hash.insert_box(lo, hi, id);
+    }
+  }
+  return work;
+}
+
+std::optional<Contact> TetHashDetector::query_point(const World& world, const CollisionPairs& pairs,
+                                                    std::int32_t object, std::int32_t vertex, std::uint64_t& work) {
+  const Vec3& p = world.bodies[object].x_m[vertex];
+  if (++m_query == 0) {  // wrapped: reset the per-tet stamps once
+    std::fill(m_tested.begin(), m_tested.end(), 0);
+    m_query = 1;
+  }
+  work += work::kPointQuery;
+  std::uint32_t best = UINT32_MAX;
+  m_hash.for_each_in_cell(p, [&](std::uint32_t id) {
+    if (m_tested[id] == m_query || id >= best) return;
+    m_tested[id] = m_query;
+    const std::int32_t other = m_owner[id];
+    if (!pairs.enabled(object, other)) return;
+    const std::int32_t t = static_cast<std::int32_t>(id - m_body_tet_offset[other]);
+    const Body& B = world.bodies[other];
+    const Tet& tet = B.mesh->tets[t];
+    if (other == object && incident(tet, vertex)) return;
+    const Vec3 &lo = m_tet_lo[id], &hi = m_tet_hi[id];
+    if ((p.array() < lo.array()).any() || (p.array() > hi.array()).any()) return;
+    work += work::kCandidate;
+    if (point_in_tet_perturbed(p, B.x_m[tet[0]], B.x_m[tet[1]], B.x_m[tet[2]], B.x_m[tet[3]])) best = id;
+  });
+  if (best == UINT32_MAX) return std::nullopt;
+  const std::int32_t other = m_owner[best];
+  return make_contact(world, object, vertex, other, static_cast<std::int32_t>(best - m_body_tet_offset[other]));
+}
+
+std::optional<Contact> brute_force_query_point(const World& world, const CollisionPairs& pairs, std::int32_t object,
+                                               std::int32_t vertex, std::uint64_t& work) {
+  const Vec3& p = world.bodies[object].x_m[vertex];
+  work += work::kPointQuery;
+  for (std::size_t b = 0; b < world.bodies.size(); ++b) {
+    if (!pairs.enabled(object, b)) continue;
+    const Body& B = world.bodies[b];
+    const auto degenerate = degenerate_flags(*B.mesh);
+    for (std::size_t t = 0; t < B.mesh->tet_count(); ++t) {
+      const Tet& tet = B.mesh->tets[t];
+      if (degenerate[t] || (b == static_cast<std::size_t>(object) && incident(tet, vertex))) continue;
+      work += work::kCandidate;
+      if (point_in_tet_perturbed(p, B.x_m[tet[0]], B.x_m[tet[1]], B.x_m[tet[2]], B.x_m[tet[3]]))
+        return make_contact(world, object, vertex, static_cast<std::int32_t>(b), static_cast<std::int32_t>(t));
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace tcb

@@ -1,0 +1,56 @@
+#pragma once
+/// Point-in-tet detection through a spatial hash of the tets (Teschner et al.
+/// 2003, in seed 000's order, which makes one point query the atomic task):
+///   1. hash_tets(): every non-degenerate tet of every body that has a
+///      collision partner goes into all cells its AABB covers (one task, not
+///      interruptible; the AABBs are kept for step 2);
+///   2. query_point(): one vertex is hashed; for each tet in its bucket: skip
+///      pairs that are not enabled and tets incident to the vertex
+///      (self-collision), reject by the stored AABB, then the exact perturbed
+///      point-in-tet test (perturbed_predicates.hpp).
+/// A point inside several tets (overlapping objects or a folded mesh) is
+/// reported in the one with the smallest (body, tet) index, so the answer never
+/// depends on the order of the bucket. Work: work_units.hpp.
+
+#include <optional>
+
+#include "method/detection/collision_pairs.hpp"
+#include "method/detection/spatial_hash.hpp"
+#include "method/handler/contact.hpp"
+
+namespace tcb {
+
+struct DetectionSettings {
+  double cell_size_m = 0.0;     ///< > 0
+  std::size_t table_size = 0;   ///< 0: next prime above twice the tet count
+  HashFunction hash = HashFunction::Mixed;
+};
+
+class TetHashDetector {
+ public:
+  TetHashDetector(const World& world, const DetectionSettings& settings);
+
+  /// Stage 1: hashes all tets at the current positions; returns work units.
+  std::uint64_t hash_tets(const World& world);
+  /// Stage 2 for one vertex; adds its work units to `work`.
+  std::optional<Contact> query_point(const World& world, const CollisionPairs& pairs, std::int32_t object,
+                                     std::int32_t vertex, std::uint64_t& work);
+
+  const SpatialHash& hash() const { return m_hash; }
+
+ private:
+  SpatialHash m_hash;
+  std::vector<std::uint32_t> m_body_tet_offset;       // global tet id = offset[body] + tet
+  std::vector<std::int32_t> m_owner;                  // global tet id -> body
+  std::vector<Vec3> m_tet_lo, m_tet_hi;               // AABBs at hashing time
+  std::vector<std::uint32_t> m_tested;                // per global tet: last query that tested it
+  std::uint32_t m_query = 0;
+};
+
+/// The O(points x tets) reference: tests the vertex against every tet of every
+/// enabled body with the same exact predicate and the same smallest-index rule,
+/// no hashing and no AABBs. For tests.
+std::optional<Contact> brute_force_query_point(const World& world, const CollisionPairs& pairs, std::int32_t object,
+                                               std::int32_t vertex, std::uint64_t& work);
+
+}  // namespace tcb

@@ -1,0 +1,58 @@
+#pragma once
+/// A time budget for one simulation step of collision handling, polled only
+/// at interruption points (seed 000).
+///
+/// Three kinds: unlimited; wall clock (milliseconds from the budget's
+/// creation, on an injectable clock so tests never sleep); work units (each
+/// task charges its fixed cost, work_units.hpp; reproducible on any machine).
+/// Work is counted under every kind, so steps.csv always reports it.
+/// expired() is true once the spent wall time or work reaches the budget; a
+/// budget of 0 is expired from the start (the handler still hashes the tets of
+/// a new cycle, which is not interruptible).
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <limits>
+
+namespace tcb {
+
+/// Milliseconds on some monotonic clock.
+using ClockMs = std::function<double()>;
+ClockMs steady_clock_ms();
+
+class Budget {
+ public:
+  enum class Kind { None, WallMs, Work };
+
+  static Budget unlimited() { return Budget(Kind::None, 0.0, {}); }
+  static Budget wall_ms(double budget_ms, ClockMs clock = steady_clock_ms()) {
+    Budget b(Kind::WallMs, budget_ms, std::move(clock));
+    b.m_start_ms = b.m_clock();
+    return b;
+  }
+  static Budget work_units(std::uint64_t units) { return Budget(Kind::Work, static_cast<double>(units), {}); }
+
+  bool expired() const {
+    switch (m_kind) {
+      case Kind::None: return false;
+      case Kind::Work: return static_cast<double>(m_spent) >= m_limit;
+      case Kind::WallMs: return m_clock() - m_start_ms >= m_limit;
+    }
+    return false;
+  }
+  void charge(std::uint64_t units) { m_spent += units; }
+  std::uint64_t spent() const { return m_spent; }
+  Kind kind() const { return m_kind; }
+  double limit() const { return m_limit; }
+
+ private:
+  Budget(Kind kind, double limit, ClockMs clock) : m_kind(kind), m_limit(limit), m_clock(std::move(clock)) {}
+  Kind m_kind;
+  double m_limit;
+  ClockMs m_clock;
+  double m_start_ms = 0.0;
+  std::uint64_t m_spent = 0;
+};
+
+}  // namespace tcb

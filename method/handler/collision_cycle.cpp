@@ -1,0 +1,142 @@
+#include "method/handler/collision_cycle.hpp"
+
+#include <algorithm>
+
+#include "method/handler/work_units.hpp"
+
+namespace tcb {
+
+CollisionCycle::CollisionCycle(const World& world, CollisionSettings settings, DetectionMode mode)
+    : m_settings(std::move(settings)),
+      m_mode(mode),
+      m_pairs(world),
+      m_detector(world, m_settings.detection),
+      m_surface(world, m_settings.detection.cell_size_m, m_settings.detection.hash) {
+  m_lookup.resize(world.bodies.size());
+  for (std::size_t b = 0; b < world.bodies.size(); ++b) {
+    m_lookup[b].assign(world.bodies[b].x_m.size(), -1);
+    bool queried = false;
+    for (std::size_t o = 0; o < world.bodies.size(); ++o) queried |= m_pairs.enabled(b, o);
+    if (!queried) continue;
+    for (std::size_t v = 0; v < world.bodies[b].x_m.size(); ++v)
+      m_queries.emplace_back(static_cast<std::int32_t>(b), static_cast<std::int32_t>(v));
+  }
+}
+
+void CollisionCycle::begin(const World& world) {
+  for (const Contact& c : m_contacts) m_lookup[c.object][c.vertex] = -1;
+  m_contacts.clear();
+  ++m_number;
+  enter(m_mode == DetectionMode::SpatialHash ? Stage::HashTets : Stage::QueryPoints, world);
+}
+
+void CollisionCycle::add_contact(const Contact& c) {
+  m_lookup[c.object][c.vertex] = static_cast<std::int32_t>(m_contacts.size());
+  m_contacts.push_back(c);
+}
+
+void CollisionCycle::enter(Stage stage, const World& world) {
+  m_stage = stage;
+  m_cursor = 0;
+  if (stage == Stage::HashSurface) {
+    std::vector<char> needed(world.bodies.size(), 0);
+    for (const Contact& c : m_contacts) needed[c.other] = 1;
+    m_triangles.clear();
+    for (std::size_t b = 0; b < world.bodies.size(); ++b)
+      if (needed[b])
+        for (std::size_t t = 0; t < world.bodies[b].mesh->surface.size(); ++t)
+          m_triangles.emplace_back(static_cast<std::int32_t>(b), static_cast<std::int32_t>(t));
+    m_surface.begin_epoch();
+  } else if (stage == Stage::Propagate) {
+    m_layer = 0;
+    build_next_layer(world);
+  }
+}
+
+// The next layer: contacts without depth next to a contact of the layer just
+// finished (or, for layer 1, next to any border point).
+void CollisionCycle::build_next_layer(const World& world) {
+  ++m_layer;
+  std::vector<std::int32_t> next;
+  for (std::size_t i = 0; i < m_contacts.size(); ++i) {
+    const Contact& c = m_contacts[i];
+    if (c.depth_source == DepthSource::None || c.layer != m_layer - 1) continue;
+    const auto& adjacency = world.bodies[c.object].mesh->vertex_neighbours;
+    for (const std::int32_t* j = adjacency.begin(c.vertex); j != adjacency.end(c.vertex); ++j) {
+      const std::int32_t n = m_lookup[c.object][*j];
+      if (n < 0 || m_contacts[n].other != c.other || m_contacts[n].depth_source != DepthSource::None) continue;
+      next.push_back(n);
+    }
+  }
+  std::sort(next.begin(), next.end());
+  next.erase(std::unique(next.begin(), next.end()), next.end());
+  m_layer_items = std::move(next);
+  m_cursor = 0;
+}
+
+bool CollisionCycle::advance(World& world, Budget& budget) {
+  while (m_stage != Stage::Done && m_stage != Stage::Idle) {
+    std::uint64_t work = 0;
+    switch (m_stage) {
+      case Stage::HashTets:
+        work = m_detector.hash_tets(world);
+        enter(Stage::QueryPoints, world);
+        break;
+      case Stage::QueryPoints:
+        if (m_cursor < m_queries.size()) {
+          const auto [body, vertex] = m_queries[m_cursor++];
+          const auto hit = m_mode == DetectionMode::SpatialHash
+                               ? m_detector.query_point(world, m_pairs, body, vertex, work)
+                               : brute_force_query_point(world, m_pairs, body, vertex, work);
+          if (hit) add_contact(*hit);
+        }
+        if (m_cursor == m_queries.size()) enter(Stage::HashSurface, world);
+        break;
+      case Stage::HashSurface:
+        if (m_cursor < m_triangles.size()) {
+          const auto [body, triangle] = m_triangles[m_cursor++];
+          work = m_surface.hash_triangle(world, body, triangle);
+        }
+        if (m_cursor == m_triangles.size()) enter(Stage::BorderDepth, world);
+        break;
+      case Stage::BorderDepth:
+        if (m_cursor < m_contacts.size()) {
+          Contact& c = m_contacts[m_cursor++];
+          work = border_point_depth(world, c, m_contacts, m_lookup, m_surface);
+        }
+        if (m_cursor == m_contacts.size()) enter(Stage::Propagate, world);
+        break;
+      case Stage::Propagate:
+        if (m_cursor < m_layer_items.size()) {
+          Contact& c = m_contacts[m_layer_items[m_cursor++]];
+          work = propagate_depth(world, c, m_contacts, m_lookup, m_layer);
+        }
+        if (m_cursor == m_layer_items.size()) {
+          build_next_layer(world);
+          if (m_layer_items.empty()) enter(Stage::Forces, world);
+        }
+        break;
+      case Stage::Forces:
+        if (m_cursor < m_contacts.size()) {
+          Contact& c = m_contacts[m_cursor++];
+          c.force_n = penalty_force(world, c, m_settings.response(c.object, c.other), m_settings.dt_s);
+          work = work::kForce;
+        }
+        if (m_cursor == m_contacts.size()) m_stage = Stage::Done;
+        break;
+      case Stage::Idle:
+      case Stage::Done:
+        break;
+    }
+    budget.charge(work);
+    if (m_stage != Stage::Done && budget.expired()) return false;  // an interruption point
+  }
+  return m_stage == Stage::Done;
+}
+
+std::int64_t CollisionCycle::depth_fallback() const {
+  return std::count_if(m_contacts.begin(), m_contacts.end(),
+                       [](const Contact& c) { return c.depth_source == DepthSource::None; });
+}
+
+}  // namespace tcb

@@ -1,0 +1,71 @@
+#pragma once
+/// One collision cycle (detection, penetration depth, response: seed 000,
+/// fig. 2) written once as a sequence of small resumable tasks, so every
+/// handler runs the same algorithm and only the schedule differs.
+///
+/// Stages and their tasks; the budget is polled after every task (the
+/// interruption points of seed 000):
+///   HashTets     all tets into the spatial hash: ONE task, not interruptible,
+///                done once per cycle and not repeated when resuming
+///   QueryPoints  one point query per task
+///   HashSurface  one surface triangle per task (bodies some point is inside)
+///   BorderDepth  one colliding point's border-edge work per task
+///   Propagate    one propagated point per task, layer by layer
+///   Forces       one penalty force per task
+/// A task always reads the world's current positions: work resumed in a later
+/// step uses the positions of that step. Nothing is applied to the world here:
+/// handlers decide which forces to apply.
+
+#include <cstdint>
+#include <vector>
+
+#include "method/depth/penetration_depth.hpp"
+#include "method/handler/budget.hpp"
+#include "method/handler/collision_settings.hpp"
+
+namespace tcb {
+
+enum class DetectionMode { SpatialHash, BruteForce };
+
+class CollisionCycle {
+ public:
+  enum class Stage { Idle, HashTets, QueryPoints, HashSurface, BorderDepth, Propagate, Forces, Done };
+
+  CollisionCycle(const World& world, CollisionSettings settings, DetectionMode mode = DetectionMode::SpatialHash);
+
+  /// Starts a new cycle (the previous one's results are dropped).
+  void begin(const World& world);
+  /// Runs tasks until the cycle is done (true) or the budget has expired after
+  /// a task (false). Charges every task's work to the budget.
+  bool advance(World& world, Budget& budget);
+
+  Stage stage() const { return m_stage; }
+  bool done() const { return m_stage == Stage::Done; }
+  std::int64_t number() const { return m_number; }  ///< 1 for the first cycle
+  const std::vector<Contact>& contacts() const { return m_contacts; }
+  /// Contacts that ended the cycle without a depth (no border path).
+  std::int64_t depth_fallback() const;
+  const CollisionSettings& settings() const { return m_settings; }
+
+ private:
+  void enter(Stage stage, const World& world);
+  void add_contact(const Contact& c);
+  void build_next_layer(const World& world);
+
+  CollisionSettings m_settings;
+  DetectionMode m_mode;
+  CollisionPairs m_pairs;
+  TetHashDetector m_detector;
+  SurfaceHash m_surface;
+  Stage m_stage = Stage::Idle;
+  std::int64_t m_number = 0;
+  std::size_t m_cursor = 0;
+  std::vector<std::pair<std::int32_t, std::int32_t>> m_queries;    // (body, vertex) to query
+  std::vector<std::pair<std::int32_t, std::int32_t>> m_triangles;  // (body, surface triangle) to hash
+  std::vector<std::int32_t> m_layer_items;                         // contacts of the current layer
+  std::int32_t m_layer = 0;
+  std::vector<Contact> m_contacts;
+  ContactLookup m_lookup;
+};
+
+}  // namespace tcb

@@ -1,0 +1,89 @@
+#include "method/handler/collision_settings.hpp"
+
+#include <fmt/format.h>
+
+#include "sim/io/input_error.hpp"
+
+namespace tcb {
+
+double average_edge_length(const World& world) {
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (const Body& b : world.bodies) {
+    for (const Edge& e : b.mesh->edges) sum += (b.x_m[e[1]] - b.x_m[e[0]]).norm();
+    count += b.mesh->edges.size();
+  }
+  return count ? sum / static_cast<double>(count) : 1.0;
+}
+
+CollisionSettings resolve_collision_settings(const World& world, const SceneDesc& scene) {
+  const CollisionDesc& desc = scene.collision;
+  const std::string file = scene.path.empty() ? std::string("scene") : scene.path.string();
+  CollisionSettings s;
+  s.detection.cell_size_m = desc.cell_size_m.value_or(average_edge_length(world));
+  if (!(s.detection.cell_size_m > 0.0)) s.detection.cell_size_m = 1.0;  // a world of points only
+  s.detection.table_size = desc.table_size;
+  if (desc.hash == "mixed") s.detection.hash = HashFunction::Mixed;
+  else if (desc.hash == "paper") s.detection.hash = HashFunction::Paper;
+  else throw InputError(file, 0, "collision.hash must be \"mixed\" or \"paper\", not \"" + desc.hash + "\"");
+
+  s.dt_s = scene.dt_s;
+  s.body_count = world.bodies.size();
+  const ResponseParams defaults{desc.response_stiffness_n_per_m, desc.damping_n_s_per_m, desc.friction};
+  s.pair_response.assign(s.body_count * s.body_count, defaults);
+  const auto matches = [&](const Body& b, const std::string& name) { return b.name == name || b.group == name; };
+  for (const CollisionPairDesc& pair : desc.pairs) {
+    bool found_a = false, found_b = false;
+    for (std::size_t a = 0; a < s.body_count; ++a) {
+      found_a |= matches(world.bodies[a], pair.a);
+      found_b |= matches(world.bodies[a], pair.b);
+      for (std::size_t b = 0; b < s.body_count; ++b) {
+        const bool hit = (matches(world.bodies[a], pair.a) && matches(world.bodies[b], pair.b)) ||
+                         (matches(world.bodies[a], pair.b) && matches(world.bodies[b], pair.a));
+        if (!hit) continue;
+        ResponseParams& r = s.pair_response[a * s.body_count + b];
+        if (pair.stiffness_n_per_m) r.stiffness_n_per_m = *pair.stiffness_n_per_m;
+        if (pair.damping_n_s_per_m) r.damping_n_s_per_m = *pair.damping_n_s_per_m;
+        if (pair.friction) r.friction = *pair.friction;
+      }
+    }
+    if (!found_a || !found_b)
+      throw InputError(file, pair.source_line,
+                       "collision.pair names no object '" + (found_a ? pair.b : pair.a) + "'");
+  }
+
+  // Penalty forces are explicit: a spring of stiffness k on mass m is stable
+  // only for k < 4 m / dt^2. Check each colliding pair's lightest vertex.
+  const CollisionPairs pairs(world);
+  std::vector<double> lightest(s.body_count, 0.0);
+  for (std::size_t b = 0; b < s.body_count; ++b) {
+    double m_min = 0.0;
+    for (double m : world.bodies[b].mass_kg)
+      if (m > 0.0 && (m_min == 0.0 || m < m_min)) m_min = m;
+    lightest[b] = world.bodies[b].passive ? 0.0 : m_min;
+  }
+  double worst_ratio = 0.0;
+  std::string worst;
+  for (std::size_t a = 0; a < s.body_count; ++a)
+    for (std::size_t b = 0; b < s.body_count; ++b) {
+      if (!pairs.enabled(a, b)) continue;
+      const double m = std::max(lightest[a], lightest[b]) > 0.0
+                           ? (lightest[a] > 0.0 && lightest[b] > 0.0 ? std::min(lightest[a], lightest[b])
+                                                                     : std::max(lightest[a], lightest[b]))
+                           : 0.0;
+      if (m == 0.0) continue;
+      const double bound = 4.0 * m / (scene.dt_s * scene.dt_s);
+      const double ratio = s.response(a, b).stiffness_n_per_m / bound;
+      if (ratio > 1.0 && ratio > worst_ratio) {
+        worst_ratio = ratio;
+        worst = fmt::format(
+            "response stiffness {:.4g} N/m between '{}' and '{}' exceeds the explicit stability bound 4 m / dt^2 = "
+            "{:.4g} N/m of their lightest vertex ({:.3g} kg at dt {:.3g} s): contacts there may chatter or explode",
+            s.response(a, b).stiffness_n_per_m, world.bodies[a].name, world.bodies[b].name, bound, m, scene.dt_s);
+      }
+    }
+  if (!worst.empty()) s.warnings.push_back(worst);
+  return s;
+}
+
+}  // namespace tcb

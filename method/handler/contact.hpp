@@ -1,0 +1,32 @@
+#pragma once
+/// What collision handling knows about one colliding point (METHOD.md s.1):
+/// vertex `vertex` of body `object` lies inside tet `tet` of body `other`
+/// (other == object for self-collision), with its penetration depth and
+/// direction once known and the penalty force computed from them.
+/// Units: depth m (positive inside, unsquared), force N.
+
+#include <array>
+#include <cstdint>
+
+#include "sim/mesh/tet_mesh.hpp"
+
+namespace tcb {
+
+enum class DepthSource : std::uint8_t {
+  None,        ///< not known (yet); no depth-based force
+  Border,      ///< from the point's border edges (Heidelberger et al. 2004)
+  Propagated,  ///< propagated from neighbours with a depth
+};
+
+struct Contact {
+  std::int32_t object = -1, vertex = -1;
+  std::int32_t other = -1, tet = -1;
+  std::array<double, 4> barycentric{};  ///< of the point in the tet at detection; sums to 1
+  DepthSource depth_source = DepthSource::None;
+  std::int32_t layer = -1;              ///< propagation layer (0 for border points)
+  double depth_m = 0.0;
+  Vec3 direction = Vec3::Zero();        ///< unit; pushes the point out of `other`
+  Vec3 force_n = Vec3::Zero();          ///< on the point; the reaction goes to the tet
+};
+
+}  // namespace tcb

@@ -1,0 +1,45 @@
+#pragma once
+/// Penalty response (METHOD.md s.4; seed 000, Heidelberger et al. 2004).
+///
+/// Normal force on the colliding point p (of A, inside tet T of B):
+///   f_n = max(0, c_r d - c v_n) r,   v_n = (v_p - v_T(p)) . r
+/// with c_r the pair's response stiffness (N/m), d the depth (m), r the
+/// direction; v_T(p) interpolates T's vertex velocities with p's barycentric
+/// weights. The max(0, .) keeps damping from pulling objects together.
+/// Friction is Coulomb: f_t = -min(mu |f_n|, m v_t / dt) v_t / |v_t| with v_t
+/// the tangential relative velocity.
+/// Contact forces are explicit (applied over the next step), so damping and
+/// friction are clamped to what can at most stop the relative motion within
+/// one step: c = min(c_d, m / dt) and the m v_t / dt bound above, with m the
+/// reduced mass of the point and the tet at p (the point's mass when B is
+/// passive). Without these clamps a friction force on a gram-scale vertex
+/// reverses the sliding every step and the contact chatters or explodes. The
+/// stiffness is not clamped: c_r must stay below about 4 m / dt^2 (scenes say
+/// so), and an explosion is reported by the run as unstable.
+/// The reaction -(f_n + f_t) is spread over T's vertices by the same
+/// barycentric weights (which sum to 1): the total force is zero, so momentum
+/// is conserved. A contact without depth gets no force.
+
+#include "method/handler/contact.hpp"
+#include "sim/world/world.hpp"
+
+namespace tcb {
+
+struct ResponseParams {
+  double stiffness_n_per_m = 1.0e4;
+  double damping_n_s_per_m = 0.0;
+  double friction = 0.0;
+};
+
+/// The penalty force on the colliding point of `contact` for a step of dt_s
+/// (see file comment).
+Vec3 penalty_force(const World& world, const Contact& contact, const ResponseParams& params, double dt_s);
+
+/// Reduced mass (kg) of the contact's point and the tet at its barycentric
+/// position; the point's own mass when the other body is passive.
+double contact_reduced_mass(const World& world, const Contact& contact);
+
+/// Adds force to the point and the barycentric reaction to the tet's vertices.
+void apply_contact_force(World& world, const Contact& contact, const Vec3& force_n);
+
+}  // namespace tcb
