@@ -41,16 +41,16 @@ bool bool_setting(const std::map<std::string, MethodSetting>& settings, const st
 const std::vector<MethodInfo>& method_registry() {
   static const std::vector<MethodInfo> registry = {
       {"full", "the whole collision cycle every step, never interrupted (seed 000's reference)", {},
-       [](const auto&) { return std::make_unique<FullHandler>(DetectionMode::SpatialHash); }},
+       [](const auto&) { return std::make_unique<FullHandler>(DetectionMode::SpatialHash); }, true},
       {"every_nth", "a full cycle every n-th step, the last forces held in between (every_nth.n, every_nth.hold)",
        {"n", "hold"},
        [](const auto& s) {
          return std::make_unique<EveryNthHandler>(integer_setting(s, "n", 2, 1), bool_setting(s, "hold", true));
-       }},
+       }, true},
       {"brute_force", "every point against every tet, no hashing: the O(n^2) reference for tests", {},
-       [](const auto&) { return std::make_unique<FullHandler>(DetectionMode::BruteForce); }},
+       [](const auto&) { return std::make_unique<FullHandler>(DetectionMode::BruteForce); }, true},
       {"none", "no collision handling: objects pass through each other (dynamics and ground only)", {},
-       [](const auto&) { return std::make_unique<NoneHandler>(); }},
+       [](const auto&) { return std::make_unique<NoneHandler>(); }, false},
   };
   return registry;
 }

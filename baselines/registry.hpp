@@ -22,6 +22,7 @@ struct MethodInfo {
   /// Builds the handler from its settings (validated: unknown keys and bad
   /// values throw InputError naming where they were written).
   std::function<std::unique_ptr<CollisionHandler>(const std::map<std::string, MethodSetting>&)> make;
+  bool detects = true;  ///< false for `none`: it is exempt from the cross-method test
 };
 
 const std::vector<MethodInfo>& method_registry();

@@ -8,6 +8,7 @@
 
 #include "baselines/registry.hpp"
 #include "experiments/metrics/distribution.hpp"
+#include "method/detection/spatial_hash.hpp"
 #include "experiments/results/steps_csv.hpp"
 #include "experiments/run/provenance.hpp"
 #include "sim/io/atomic_file.hpp"
@@ -108,7 +109,13 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
     StepRow row;
     Budget budget = Budget::unlimited();
     const auto t_handler = Clock::now();
-    const StepReport report = handler->step(world, budget);
+    StepReport report;
+    try {
+      report = handler->step(world, budget);
+    } catch (const HashOverflow& e) {
+      outcome = {"unstable", fmt::format("collision handling at step {}: {}", world.step_index + 1, e.what()), s, 0.0};
+      break;
+    }
     row.handling_ms = ms_since(t_handler);
     const auto t0 = Clock::now();
     world.step(scene.dt_s);

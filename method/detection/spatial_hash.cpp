@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace tcb {
 
@@ -50,9 +51,17 @@ std::int64_t SpatialHash::cell_of(double x) const {
   return static_cast<std::int64_t>(std::clamp(std::floor(x * m_inverse_cell), -kLimit, kLimit));
 }
 
+void SpatialHash::check_box(std::int64_t ni, std::int64_t nj, std::int64_t nk) const {
+  const double cells = static_cast<double>(ni) * static_cast<double>(nj) * static_cast<double>(nk);
+  if (cells > static_cast<double>(kMaxCellsPerBox))
+    throw HashOverflow("a box spans " + std::to_string(cells) + " hash cells of " + std::to_string(m_cell_size) +
+                       " m: the simulation has diverged, or collision.cell_size is far too small for the elements");
+}
+
 std::size_t SpatialHash::insert_box(const Vec3& lo, const Vec3& hi, std::uint32_t item) {
   const std::int64_t i0 = cell_of(lo.x()), i1 = cell_of(hi.x()), j0 = cell_of(lo.y()), j1 = cell_of(hi.y()),
                      k0 = cell_of(lo.z()), k1 = cell_of(hi.z());
+  check_box(i1 - i0 + 1, j1 - j0 + 1, k1 - k0 + 1);
   std::size_t cells = 0;
   for (std::int64_t i = i0; i <= i1; ++i)
     for (std::int64_t j = j0; j <= j1; ++j)

@@ -17,9 +17,13 @@
 /// times (several of its cells in one bucket): callers filter by their own
 /// exact tests and de-duplicate.
 /// Contract: coordinates must be finite; cell indices are clamped to +-2^50,
-/// far beyond any scene (positions are in metres).
+/// far beyond any scene (positions are in metres). A box covering more than
+/// kMaxCellsPerBox cells throws HashOverflow instead of exhausting memory:
+/// either the cell size is far too small for the elements, or the simulation
+/// has diverged and an element has been stretched across the scene.
 
 #include <cstdint>
+#include <stdexcept>
 #include <vector>
 
 #include "sim/mesh/tet_mesh.hpp"
@@ -27,6 +31,13 @@
 namespace tcb {
 
 enum class HashFunction { Paper, Mixed };
+
+inline constexpr std::uint64_t kMaxCellsPerBox = std::uint64_t(1) << 21;
+
+class HashOverflow : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 std::uint64_t hash_cell(HashFunction function, std::int64_t i, std::int64_t j, std::int64_t k);
 
@@ -55,6 +66,7 @@ class SpatialHash {
   std::size_t for_each_in_box(const Vec3& lo, const Vec3& hi, F&& f) const {
     const std::int64_t i0 = cell_of(lo.x()), i1 = cell_of(hi.x()), j0 = cell_of(lo.y()), j1 = cell_of(hi.y()),
                        k0 = cell_of(lo.z()), k1 = cell_of(hi.z());
+    check_box(i1 - i0 + 1, j1 - j0 + 1, k1 - k0 + 1);
     for (std::int64_t i = i0; i <= i1; ++i)
       for (std::int64_t j = j0; j <= j1; ++j)
         for (std::int64_t k = k0; k <= k1; ++k) for_each_in_bucket(bucket_of(i, j, k), f);
@@ -73,6 +85,7 @@ class SpatialHash {
     std::int32_t next;
   };
   std::int64_t cell_of(double x) const;
+  void check_box(std::int64_t ni, std::int64_t nj, std::int64_t nk) const;
   std::size_t bucket_of(std::int64_t i, std::int64_t j, std::int64_t k) const {
     return static_cast<std::size_t>(hash_cell(m_function, i, j, k) % m_head.size());
   }

@@ -1,0 +1,49 @@
+#include "method/detection/spatial_hash.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <set>
+
+using namespace tcb;
+
+TEST_CASE("the paper's hash is symmetric around the origin; the mixed one is not", "[hash]") {
+  // METHOD.md's example: cells (-10,-1,9) and (-10,1,-9) share a bucket.
+  const std::uint64_t n = next_prime(10007);
+  CHECK(hash_cell(HashFunction::Paper, -10, -1, 9) % n == hash_cell(HashFunction::Paper, -10, 1, -9) % n);
+  CHECK(hash_cell(HashFunction::Mixed, -10, -1, 9) % n != hash_cell(HashFunction::Mixed, -10, 1, -9) % n);
+}
+
+TEST_CASE("bucket occupancy near the origin: a slab of cells like a plate stack", "[hash]") {
+  // 20 x 20 x 40 cells around the origin into a table of about twice as many
+  // buckets: the mixed hash spreads them much better than the paper's.
+  const std::uint64_t n = next_prime(2 * 20 * 20 * 40);
+  for (auto [function, min_distinct] : {std::pair{HashFunction::Mixed, 0.75}, std::pair{HashFunction::Paper, 0.0}}) {
+    std::set<std::uint64_t> buckets;
+    for (int i = -10; i < 10; ++i)
+      for (int j = 0; j < 40; ++j)
+        for (int k = -10; k < 10; ++k) buckets.insert(hash_cell(function, i, j, k) % n);
+    const double distinct = static_cast<double>(buckets.size()) / (20 * 20 * 40);
+    INFO((function == HashFunction::Mixed ? "mixed" : "paper") << ": " << distinct << " of cells in distinct buckets");
+    CHECK(distinct >= min_distinct);
+  }
+}
+
+TEST_CASE("spatial hash: boxes, cells, epochs", "[hash]") {
+  SpatialHash hash(0.5, next_prime(101), HashFunction::Mixed);
+  hash.begin_epoch();
+  CHECK(hash.insert_box(Vec3(0.1, 0.1, 0.1), Vec3(0.2, 0.2, 0.2), 7) == 1);
+  CHECK(hash.insert_box(Vec3(-0.1, 0.1, 0.1), Vec3(0.6, 0.2, 0.2), 8) == 3);  // cells -1, 0, 1 in x
+  std::set<std::uint32_t> found;
+  hash.for_each_in_cell(Vec3(0.15, 0.15, 0.15), [&](std::uint32_t id) { found.insert(id); });
+  CHECK(found.count(7));
+  CHECK(found.count(8));
+  hash.begin_epoch();  // everything is gone, nothing was cleared
+  found.clear();
+  hash.for_each_in_cell(Vec3(0.15, 0.15, 0.15), [&](std::uint32_t id) { found.insert(id); });
+  CHECK(found.empty());
+  CHECK(hash.occupied_buckets() == 0);
+  CHECK(next_prime(100) == 101);
+  // A box across the scene (a diverged simulation) is refused, not allocated.
+  CHECK_THROWS_AS(hash.insert_box(Vec3(-1e3, -1e3, -1e3), Vec3(1e3, 1e3, 1e3), 9), HashOverflow);
+  CHECK(next_prime(2) == 2);
+}
