@@ -1,0 +1,39 @@
+// plates20 with `full` for the scene's whole length (2000 steps, ~90 s): the
+// stack stays standing and no plate passes into the one below.
+#include <catch2/catch.hpp>
+
+#include "baselines/registry.hpp"
+#include "experiments/scene/scene_file.hpp"
+
+using namespace tcb;
+
+TEST_CASE("plates20: full keeps the 20-plate stack standing for the whole scene", "[scene][slow]") {
+  const SceneDesc scene = load_scene_file(resolve_scene("plates20", default_scene_dirs()));
+  World world = build_world(scene);
+  auto handler = make_handler("full", scene);
+  handler->init(world, scene);
+  CHECK(handler->warnings().empty());
+  const double thickness = 0.02;
+  const auto mean_y = [&](const Body& b) {
+    double y = 0.0;
+    for (const Vec3& p : b.x_m) y += p.y();
+    return y / static_cast<double>(b.x_m.size());
+  };
+  double smallest_gap = 1e9, final_top = 0.0;
+  for (std::int64_t s = 0; s < scene.steps; ++s) {
+    Budget unlimited = Budget::unlimited();
+    handler->step(world, unlimited);
+    world.step(scene.dt_s);
+    REQUIRE(std::isfinite(world.max_speed_m_per_s()));
+    if (s % 50 == 49) {
+      for (std::size_t i = 0; i + 1 < world.bodies.size(); ++i)
+        smallest_gap = std::min(smallest_gap, mean_y(world.bodies[i + 1]) - mean_y(world.bodies[i]));
+    }
+  }
+  final_top = mean_y(world.bodies.back());
+  INFO("smallest centre distance " << smallest_gap << " m, top plate centre " << final_top << " m");
+  // Centres stay about one thickness apart (penetration at rest is ~1 mm).
+  CHECK(smallest_gap > 0.9 * thickness);
+  CHECK(final_top > 0.9 * (19.5 * thickness));
+  CHECK(world.max_speed_m_per_s() < 0.05);
+}
