@@ -38,6 +38,8 @@ class SurfaceHash {
   void begin_epoch() { m_hash.begin_epoch(); }
   /// Hashes one surface triangle at the current positions; returns work units.
   std::uint64_t hash_triangle(const World& world, std::int32_t body, std::int32_t triangle);
+  /// After the last triangle: makes the hash queryable.
+  void build() { m_hash.build(); }
 
   /// Calls f(triangle) for each distinct triangle of `body` hashed in the cells of [lo, hi].
   template <typename F>

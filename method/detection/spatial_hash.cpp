@@ -32,7 +32,7 @@ std::uint64_t next_prime(std::uint64_t n) {
 
 SpatialHash::SpatialHash(double cell_size_m, std::size_t table_size, HashFunction function)
     : m_cell_size(cell_size_m), m_inverse_cell(1.0 / cell_size_m), m_function(function),
-      m_head(std::max<std::size_t>(table_size, 1), -1), m_stamp(m_head.size(), 0) {
+      m_start(std::max<std::size_t>(table_size, 1), 0), m_count(m_start.size(), 0), m_stamp(m_start.size(), 0) {
   if (!(cell_size_m > 0.0) || !std::isfinite(cell_size_m))
     throw std::invalid_argument("spatial hash cell size must be positive and finite");
 }
@@ -69,13 +69,35 @@ std::size_t SpatialHash::insert_box(const Vec3& lo, const Vec3& hi, std::uint32_
         const std::size_t b = bucket_of(i, j, k);
         if (m_stamp[b] != m_epoch) {
           m_stamp[b] = m_epoch;
-          m_head[b] = -1;
+          m_count[b] = 0;
         }
-        m_entries.push_back({item, m_head[b]});
-        m_head[b] = static_cast<std::int32_t>(m_entries.size() - 1);
+        ++m_count[b];
+        m_entries.push_back({item, static_cast<std::uint32_t>(b)});
         ++cells;
       }
   return cells;
+}
+
+void SpatialHash::build() {
+  // Counting sort by bucket over the entries only: a bucket's start is given
+  // when its first entry is met (m_start doubles as the fill cursor, so each
+  // start is stored as the end of its range and rewound afterwards).
+  std::uint32_t next = 0;
+  for (const Entry& e : m_entries) {
+    if (m_count[e.bucket] == 0) continue;
+    if (m_stamp[e.bucket] == m_epoch) {  // first time met in this pass: allocate
+      m_start[e.bucket] = next;
+      next += m_count[e.bucket];
+      m_stamp[e.bucket] = m_epoch - 1;  // mark allocated; restored below
+    }
+  }
+  m_sorted.resize(m_entries.size());
+  for (const Entry& e : m_entries) m_sorted[m_start[e.bucket]++] = e.item;
+  for (const Entry& e : m_entries) {
+    if (m_stamp[e.bucket] == m_epoch) continue;
+    m_stamp[e.bucket] = m_epoch;
+    m_start[e.bucket] -= m_count[e.bucket];  // rewind to the range's start
+  }
 }
 
 std::size_t SpatialHash::occupied_buckets() const {

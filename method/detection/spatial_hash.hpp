@@ -13,6 +13,12 @@
 ///   by the 64-bit splitmix finaliser, mod n.
 /// Buckets are time-stamped: begin_epoch() empties the whole table in O(1) (a
 /// bucket whose stamp is older counts as empty), so nothing is cleared per step.
+/// Insertion appends entries; build() then lays each bucket's entries out
+/// contiguously by a counting sort in O(entries), never touching the rest of the
+/// table (so the time-stamp property holds). Queries need a built table:
+/// insert everything, build(), then query. (Walking per-bucket linked lists
+/// instead made every candidate a cache miss: 2.2 us per point query on the
+/// dog pair.)
 /// A bucket may hold items of other cells (hash collisions) and an item several
 /// times (several of its cells in one bucket): callers filter by their own
 /// exact tests and de-duplicate.
@@ -54,6 +60,8 @@ class SpatialHash {
   /// Inserts item into every cell its box [lo, hi] overlaps; returns the
   /// number of cells (each a unit of work).
   std::size_t insert_box(const Vec3& lo, const Vec3& hi, std::uint32_t item);
+  /// Makes the inserted entries queryable (see file comment).
+  void build();
 
   /// Calls f(item) for every entry of the bucket of point p's cell.
   template <typename F>
@@ -74,7 +82,7 @@ class SpatialHash {
   }
 
   double cell_size_m() const { return m_cell_size; }
-  std::size_t table_size() const { return m_head.size(); }
+  std::size_t table_size() const { return m_stamp.size(); }
   std::size_t entry_count() const { return m_entries.size(); }
   /// Buckets holding at least one entry in the current epoch.
   std::size_t occupied_buckets() const;
@@ -82,26 +90,28 @@ class SpatialHash {
  private:
   struct Entry {
     std::uint32_t item;
-    std::int32_t next;
+    std::uint32_t bucket;
   };
   std::int64_t cell_of(double x) const;
   void check_box(std::int64_t ni, std::int64_t nj, std::int64_t nk) const;
   std::size_t bucket_of(std::int64_t i, std::int64_t j, std::int64_t k) const {
-    return static_cast<std::size_t>(hash_cell(m_function, i, j, k) % m_head.size());
+    return static_cast<std::size_t>(hash_cell(m_function, i, j, k) % m_stamp.size());
   }
   template <typename F>
   void for_each_in_bucket(std::size_t b, F& f) const {
     if (m_stamp[b] != m_epoch) return;
-    for (std::int32_t e = m_head[b]; e >= 0; e = m_entries[e].next) f(m_entries[e].item);
+    const std::uint32_t* it = m_sorted.data() + m_start[b];
+    for (const std::uint32_t* end = it + m_count[b]; it != end; ++it) f(*it);
   }
 
   double m_cell_size = 1.0;
   double m_inverse_cell = 1.0;
   HashFunction m_function = HashFunction::Mixed;
-  std::vector<std::int32_t> m_head;
+  std::vector<std::uint32_t> m_start, m_count;  // per bucket, valid where m_stamp == m_epoch
   std::vector<std::uint32_t> m_stamp;
   std::uint32_t m_epoch = 1;
-  std::vector<Entry> m_entries;
+  std::vector<Entry> m_entries;   // in insertion order
+  std::vector<std::uint32_t> m_sorted;  // items grouped by bucket (after build)
 };
 
 }  // namespace tcb

@@ -67,6 +67,7 @@ std::uint64_t TetHashDetector::hash_tets(const World& world) {
       work += work::kCellInsert * m_hash.insert_box(lo, hi, id);
     }
   }
+  m_hash.build();
   return work;
 }
 

@@ -97,7 +97,10 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
           const auto [body, triangle] = m_triangles[m_cursor++];
           work = m_surface.hash_triangle(world, body, triangle);
         }
-        if (m_cursor == m_triangles.size()) enter(Stage::BorderDepth, world);
+        if (m_cursor == m_triangles.size()) {
+          m_surface.build();
+          enter(Stage::BorderDepth, world);
+        }
         break;
       case Stage::BorderDepth:
         if (m_cursor < m_contacts.size()) {

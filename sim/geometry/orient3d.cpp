@@ -1,5 +1,6 @@
 #include "sim/geometry/orient3d.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -24,9 +25,20 @@ constexpr double kDet2ErrorBound = (3.0 + 16.0 * kEpsilon) * kEpsilon;
 // the sum of three such terms 192.
 constexpr std::size_t kMaxTerms = 192;
 
+// Deliberately not zero-initialised: only term[0 .. size) is ever read, and
+// clearing 1.5 KB per temporary dominated the degenerate (exact) path.
 struct Expansion {
-  std::array<double, kMaxTerms> term{};
+  std::array<double, kMaxTerms> term;
   std::size_t size = 0;
+  Expansion() {}
+  Expansion(const Expansion& other) : size(other.size) {
+    std::copy(other.term.begin(), other.term.begin() + other.size, term.begin());
+  }
+  Expansion& operator=(const Expansion& other) {
+    size = other.size;
+    std::copy(other.term.begin(), other.term.begin() + other.size, term.begin());
+    return *this;
+  }
   void push_nonzero(double x) {
     if (x != 0.0) term[size++] = x;
   }
@@ -92,7 +104,7 @@ Expansion sum(const Expansion& e, const Expansion& f) {
   if (e.size == 0) return f;
   if (f.size == 0) return e;
   // Merge both by increasing magnitude.
-  std::array<double, kMaxTerms> g{};
+  std::array<double, kMaxTerms> g;
   std::size_t n = 0, i = 0, j = 0;
   while (i < e.size && j < f.size) {
     g[n++] = (std::fabs(e.term[i]) < std::fabs(f.term[j])) ? e.term[i++] : f.term[j++];

@@ -2,6 +2,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <random>
 #include <set>
 
 using namespace tcb;
@@ -33,11 +34,13 @@ TEST_CASE("spatial hash: boxes, cells, epochs", "[hash]") {
   hash.begin_epoch();
   CHECK(hash.insert_box(Vec3(0.1, 0.1, 0.1), Vec3(0.2, 0.2, 0.2), 7) == 1);
   CHECK(hash.insert_box(Vec3(-0.1, 0.1, 0.1), Vec3(0.6, 0.2, 0.2), 8) == 3);  // cells -1, 0, 1 in x
+  hash.build();
   std::set<std::uint32_t> found;
   hash.for_each_in_cell(Vec3(0.15, 0.15, 0.15), [&](std::uint32_t id) { found.insert(id); });
   CHECK(found.count(7));
   CHECK(found.count(8));
   hash.begin_epoch();  // everything is gone, nothing was cleared
+  hash.build();
   found.clear();
   hash.for_each_in_cell(Vec3(0.15, 0.15, 0.15), [&](std::uint32_t id) { found.insert(id); });
   CHECK(found.empty());
@@ -46,4 +49,30 @@ TEST_CASE("spatial hash: boxes, cells, epochs", "[hash]") {
   // A box across the scene (a diverged simulation) is refused, not allocated.
   CHECK_THROWS_AS(hash.insert_box(Vec3(-1e3, -1e3, -1e3), Vec3(1e3, 1e3, 1e3), 9), HashOverflow);
   CHECK(next_prime(2) == 2);
+}
+
+TEST_CASE("spatial hash: every item is found in every cell it was inserted into", "[hash]") {
+  // Random boxes in a small table (many bucket collisions), over several epochs.
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-2.0, 2.0), size(0.0, 0.6);
+  SpatialHash hash(0.25, 31, HashFunction::Paper);
+  for (int epoch = 0; epoch < 3; ++epoch) {
+    hash.begin_epoch();
+    std::vector<std::pair<Vec3, Vec3>> boxes;
+    for (std::uint32_t i = 0; i < 300; ++i) {
+      const Vec3 lo(u(rng), u(rng), u(rng));
+      boxes.emplace_back(lo, lo + Vec3(size(rng), size(rng), size(rng)));
+      hash.insert_box(boxes.back().first, boxes.back().second, i);
+    }
+    hash.build();
+    for (std::uint32_t i = 0; i < boxes.size(); ++i) {
+      const Vec3 centre = 0.5 * (boxes[i].first + boxes[i].second);
+      bool found = false;
+      hash.for_each_in_cell(centre, [&](std::uint32_t id) { found |= id == i; });
+      REQUIRE(found);
+      std::size_t seen = 0;
+      hash.for_each_in_box(boxes[i].first, boxes[i].second, [&](std::uint32_t id) { seen += id == i; });
+      REQUIRE(seen >= 1);
+    }
+  }
 }

@@ -1,0 +1,129 @@
+// One whole collision cycle (hash tets, query points, hash surface, border
+// depth, propagation, forces), for the figures the collision-pipeline issue
+// reports:
+//   build/release/experiments/micro/micro_collision_cycle --benchmark_repetitions=3
+// BM_DogPair/<hash>/<cell x 100>: dog.mesh (34,072 tets, scaled to 1.34 m
+// long) against a copy translated by half its height along y, which puts 10 %
+// of the vertices inside the other dog (1,541 of 15,460).
+// bucket_share: distinct buckets / distinct cells the tets occupy (1 = no two
+// occupied cells share a bucket; lower = more hash collisions).
+// BM_Plates20/<hash>: the plates20 scene (15,360 tets, at the origin).
+// hash: 0 = mixed (default), 1 = the paper's xor of primes.
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <filesystem>
+#include <set>
+
+#include "experiments/scene/scene_file.hpp"
+#include "method/handler/collision_cycle.hpp"
+#include "sim/mesh/medit_io.hpp"
+
+namespace {
+
+using namespace tcb;
+
+struct Fixture {
+  SceneDesc scene;
+  World world;
+};
+
+Fixture dog_pair() {
+  TetMesh dog = read_medit(std::filesystem::path(TCBENCH_SHARED_MESHES) / "dog.mesh");
+  for (Vec3& p : dog.positions_m) p *= 0.01;
+  Vec3 lo = dog.positions_m[0], hi = lo;
+  for (const Vec3& p : dog.positions_m) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const auto mesh = std::make_shared<const TetMesh>(std::move(dog));
+  Fixture f;
+  f.scene.dt_s = 1e-3;
+  for (int copy = 0; copy < 2; ++copy) {
+    Body b;
+    b.name = copy ? "dog_b" : "dog_a";
+    b.group = b.name;
+    b.mesh = mesh;
+    b.x_m = mesh->positions_m;
+    if (copy)
+      for (Vec3& p : b.x_m) p.y() += 0.5 * (hi.y() - lo.y());
+    b.v_m_per_s.assign(b.x_m.size(), Vec3::Zero());
+    b.contact_force_n.assign(b.x_m.size(), Vec3::Zero());
+    b.mass_kg = lumped_masses_kg(*mesh, b.x_m, 1000.0);
+    f.world.bodies.push_back(std::move(b));
+  }
+  return f;
+}
+
+// Distinct buckets over distinct cells covered by the tets' boxes.
+double bucket_share(const World& world, const DetectionSettings& d) {
+  std::set<std::array<std::int64_t, 3>> cells;
+  for (const Body& b : world.bodies)
+    for (const Tet& t : b.mesh->tets) {
+      Vec3 lo = b.x_m[t[0]], hi = lo;
+      for (int k = 1; k < 4; ++k) {
+        lo = lo.cwiseMin(b.x_m[t[k]]);
+        hi = hi.cwiseMax(b.x_m[t[k]]);
+      }
+      const auto cell = [&](double x) { return static_cast<std::int64_t>(std::floor(x / d.cell_size_m)); };
+      for (auto i = cell(lo.x()); i <= cell(hi.x()); ++i)
+        for (auto j = cell(lo.y()); j <= cell(hi.y()); ++j)
+          for (auto k = cell(lo.z()); k <= cell(hi.z()); ++k) cells.insert({i, j, k});
+    }
+  std::size_t tets = 0;
+  for (const Body& b : world.bodies) tets += b.mesh->tet_count();
+  const std::uint64_t n = d.table_size ? d.table_size : next_prime(2 * tets + 1);
+  std::set<std::uint64_t> buckets;
+  for (const auto& c : cells) buckets.insert(hash_cell(d.hash, c[0], c[1], c[2]) % n);
+  return static_cast<double>(buckets.size()) / static_cast<double>(cells.size());
+}
+
+void run_cycles(benchmark::State& state, Fixture& f, CollisionSettings settings) {
+  state.counters["bucket_share"] = bucket_share(f.world, settings.detection);
+  CollisionCycle cycle(f.world, std::move(settings));
+  std::size_t colliding = 0, tets = 0;
+  for (const Body& b : f.world.bodies) tets += b.mesh->tet_count();
+  for (auto _ : state) {
+    cycle.begin(f.world);
+    Budget unlimited = Budget::unlimited();
+    cycle.advance(f.world, unlimited);
+    colliding = cycle.contacts().size();
+    benchmark::DoNotOptimize(cycle.contacts().data());
+  }
+  state.counters["tets"] = static_cast<double>(tets);
+  state.counters["colliding"] = static_cast<double>(colliding);
+  state.counters["ns_per_tet"] =
+      benchmark::Counter(static_cast<double>(tets), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  state.counters["ns_per_colliding"] = benchmark::Counter(
+      static_cast<double>(colliding), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+void BM_DogPair(benchmark::State& state) {
+  if (!std::filesystem::exists(std::filesystem::path(TCBENCH_SHARED_MESHES) / "dog.mesh")) {
+    state.SkipWithError("dog.mesh not found (../shared/data/meshes)");
+    return;
+  }
+  static Fixture f = dog_pair();
+  CollisionSettings settings = resolve_collision_settings(f.world, f.scene);
+  settings.detection.hash = state.range(0) == 0 ? HashFunction::Mixed : HashFunction::Paper;
+  settings.detection.cell_size_m = average_edge_length(f.world) * static_cast<double>(state.range(1)) / 100.0;
+  run_cycles(state, f, settings);
+}
+BENCHMARK(BM_DogPair)->ArgsProduct({{0, 1}, {50, 100, 200}})->Unit(benchmark::kMillisecond);
+
+void BM_Plates20(benchmark::State& state) {
+  static Fixture f = [] {
+    Fixture g;
+    g.scene = load_scene_file(resolve_scene("plates20", default_scene_dirs()));
+    g.world = build_world(g.scene);
+    return g;
+  }();
+  CollisionSettings settings = resolve_collision_settings(f.world, f.scene);
+  settings.detection.hash = state.range(0) == 0 ? HashFunction::Mixed : HashFunction::Paper;
+  run_cycles(state, f, settings);
+}
+BENCHMARK(BM_Plates20)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
