@@ -76,6 +76,15 @@ TEST_CASE("cli: run exit codes 0, 1 and 2", "[cli]") {
   CHECK_THAT(bad.err, Catch::Matchers::Contains("--set scene.dt=-1: scene.dt: must be positive"));
   CHECK_FALSE(fs::exists(dir / "bad"));
   CHECK(cli({"run"}).code == 2);
+  // Method settings go through --set like scene keys, and are validated.
+  CHECK(cli({"run", "plates20", "--method", "every_nth", "--set", "every_nth.n=3", "--steps", "4", "--out",
+             (dir / "nth").string(), "--quiet"})
+            .code == 0);
+  const Result bad_n = cli({"run", "plates20", "--method", "every_nth", "--set", "every_nth.n=0", "--steps", "4",
+                            "--out", (dir / "nth0").string()});
+  CHECK(bad_n.code == 2);
+  CHECK_THAT(bad_n.err, Catch::Matchers::Contains("--set every_nth.n=0"));
+  CHECK_FALSE(fs::exists(dir / "nth0"));
   CHECK(cli({"run", "cube_drop", "--steps", "-3"}).code == 2);
   fs::remove_all(dir);
 }
@@ -108,6 +117,7 @@ TEST_CASE("cli: list", "[cli]") {
   CHECK(scenes.code == 0);
   CHECK_THAT(scenes.out, Catch::Matchers::Contains("plates20"));
   CHECK_THAT(scenes.out, Catch::Matchers::Contains("cube_drop"));
-  CHECK_THAT(cli({"list", "methods"}).out, Catch::Matchers::Contains("none"));
+  const std::string methods = cli({"list", "methods"}).out;
+  for (const char* m : {"full", "every_nth", "brute_force", "none"}) CHECK_THAT(methods, Catch::Matchers::Contains(m));
   CHECK(cli({"list", "widgets"}).code == 2);
 }
