@@ -23,6 +23,12 @@ class RunCommand final : public Command {
         ->required();
     app->add_option("--method", m_options.method, "Collision handling method (tcbench list methods)")
         ->capture_default_str();
+    auto* wall = app->add_option("--budget-ms", m_budget_ms,
+                                 "Wall-clock budget per step for collision handling (ms), polled at interruption points")
+                     ->check(CLI::NonNegativeNumber);
+    auto* work = app->add_option("--budget-work", m_budget_work,
+                                 "Budget per step in work units (bit-identical on every machine)");
+    wall->excludes(work);
     app->add_option("--steps", m_steps, "Number of steps (default: the scene's)")->check(CLI::NonNegativeNumber);
     app->add_option("--seed", m_options.seed, "Seed, recorded in run.json")->capture_default_str();
     app->add_option("--set", m_options.overrides, "Override a scene key, e.g. scene.dt=0.002 (repeatable)");
@@ -37,9 +43,13 @@ class RunCommand final : public Command {
     const auto path = resolve_scene(m_scene, default_scene_dirs());
     const SceneDesc scene = load_scene_file(path, m_options.overrides);
     if (m_steps >= 0) m_options.steps = m_steps;
+    if (app->count("--budget-ms")) m_options.budget = {BudgetSpec::Kind::WallMs, m_budget_ms};
+    if (app->count("--budget-work")) m_options.budget = {BudgetSpec::Kind::Work, static_cast<double>(m_budget_work)};
     m_options.out_dir = m_out.empty() ? std::filesystem::path("results/runs") / (scene.name + "-" + m_options.method)
                                       : std::filesystem::path(m_out);
-    m_options.command_line = "tcbench run " + m_scene;
+    m_options.command_line = "tcbench run " + m_scene + " --method " + m_options.method;
+    if (app->count("--budget-ms")) m_options.command_line += fmt::format(" --budget-ms {}", m_budget_ms);
+    if (app->count("--budget-work")) m_options.command_line += fmt::format(" --budget-work {}", m_budget_work);
     for (const auto& o : m_options.overrides) m_options.command_line += " --set " + o;
     ProgressLine progress(fmt::format("{} [{}]", scene.name, m_options.method), !m_quiet && stderr_is_terminal());
     m_options.on_step = [&](std::int64_t done, std::int64_t total) { progress.update(done, total); };
@@ -59,6 +69,8 @@ class RunCommand final : public Command {
  private:
   std::string m_scene, m_out;
   std::int64_t m_steps = -1;
+  double m_budget_ms = 0.0;
+  std::uint64_t m_budget_work = 0;
   bool m_quiet = false;
   RunOptions m_options;
 };

@@ -87,7 +87,7 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
   const auto run_start = Clock::now();
 
   StepsCsv csv(options.out_dir / "steps.csv");
-  std::vector<double> dynamics_ms, handling_ms;
+  std::vector<double> dynamics_ms, handling_ms, overshoot_pct;
   std::vector<double> solver_iterations, cycle_lengths;
   std::int64_t cycle_start_step = 1, depth_fallback_total = 0, colliding_max = 0;
   std::uint64_t work_total = 0;
@@ -107,7 +107,10 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
 
   for (std::int64_t s = 0; s < steps_total; ++s) {
     StepRow row;
-    Budget budget = Budget::unlimited();
+    Budget budget = options.budget.kind == BudgetSpec::Kind::WallMs ? Budget::wall_ms(options.budget.value)
+                    : options.budget.kind == BudgetSpec::Kind::Work
+                        ? Budget::work_units(static_cast<std::uint64_t>(options.budget.value))
+                        : Budget::unlimited();
     const auto t_handler = Clock::now();
     StepReport report;
     try {
@@ -128,6 +131,11 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
     row.exact_forces = report.exact_forces;
     row.estimated_forces = report.estimated_forces;
     handling_ms.push_back(*row.handling_ms);
+    if (options.budget.kind == BudgetSpec::Kind::WallMs) {
+      row.budget_ms = options.budget.value;
+      if (options.budget.value > 0.0)
+        overshoot_pct.push_back(100.0 * (*row.handling_ms - options.budget.value) / options.budget.value);
+    }
     work_total += report.work_units;
     depth_fallback_total += report.depth_fallback;
     colliding_max = std::max(colliding_max, report.colliding_points);
@@ -166,7 +174,12 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
 
   Json summary;
   summary["handling_ms"] = distribution_json(handling_ms);
-  summary["overshoot_pct"] = nullptr;  // no wall budget
+  if (overshoot_pct.empty()) {
+    summary["overshoot_pct"] = nullptr;  // no (positive) wall budget
+  } else {
+    const Distribution o = summarize(overshoot_pct);
+    summary["overshoot_pct"] = {{"p50", o.p50}, {"p99", o.p99}, {"max", o.max}};
+  }
   if (cycle_lengths.empty()) {
     summary["cycle_steps"] = nullptr;
   } else {
@@ -192,7 +205,13 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
   run["schema"] = "tcbench.run/1";
   run["scene"] = scene.name;
   run["method"] = options.method;
-  run["budget"] = {{"kind", "none"}, {"value", nullptr}};
+  switch (options.budget.kind) {
+    case BudgetSpec::Kind::None: run["budget"] = {{"kind", "none"}, {"value", nullptr}}; break;
+    case BudgetSpec::Kind::WallMs: run["budget"] = {{"kind", "wall_ms"}, {"value", options.budget.value}}; break;
+    case BudgetSpec::Kind::Work:
+      run["budget"] = {{"kind", "work"}, {"value", static_cast<std::uint64_t>(options.budget.value)}};
+      break;
+  }
   run["steps"] = outcome.steps_done;
   run["steps_requested"] = steps_total;
   run["dt"] = scene.dt_s;

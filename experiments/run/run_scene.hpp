@@ -19,8 +19,15 @@
 
 namespace tcb {
 
+/// The per-step budget handed to the handler.
+struct BudgetSpec {
+  enum class Kind { None, WallMs, Work } kind = Kind::None;
+  double value = 0.0;  ///< milliseconds, or work units
+};
+
 struct RunOptions {
   std::string method = "full";
+  BudgetSpec budget;
   std::optional<std::int64_t> steps;  ///< overrides the scene's step count
   std::uint64_t seed = 0;
   std::filesystem::path out_dir;

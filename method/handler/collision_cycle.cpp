@@ -27,6 +27,7 @@ void CollisionCycle::begin(const World& world) {
   for (const Contact& c : m_contacts) m_lookup[c.object][c.vertex] = -1;
   m_contacts.clear();
   ++m_number;
+  m_tasks = 0;
   enter(m_mode == DetectionMode::SpatialHash ? Stage::HashTets : Stage::QueryPoints, world);
 }
 
@@ -132,9 +133,20 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
         break;
     }
     budget.charge(work);
+    ++m_tasks;
     if (m_stage != Stage::Done && budget.expired()) return false;  // an interruption point
   }
   return m_stage == Stage::Done;
+}
+
+std::size_t CollisionCycle::queries_done() const {
+  if (m_stage == Stage::Idle || m_stage == Stage::HashTets) return 0;
+  return m_stage == Stage::QueryPoints ? m_cursor : m_queries.size();
+}
+
+std::size_t CollisionCycle::forces_computed() const {
+  if (m_stage == Stage::Done) return m_contacts.size();
+  return m_stage == Stage::Forces ? m_cursor : 0;
 }
 
 std::int64_t CollisionCycle::depth_fallback() const {

@@ -46,6 +46,11 @@ class CollisionCycle {
   /// Contacts that ended the cycle without a depth (no border path).
   std::int64_t depth_fallback() const;
   const CollisionSettings& settings() const { return m_settings; }
+  /// Progress, for schedules and tests: tasks run in this cycle, points
+  /// queried, and how many contacts (a prefix of contacts()) have their force.
+  std::int64_t tasks_done() const { return m_tasks; }
+  std::size_t queries_done() const;
+  std::size_t forces_computed() const;
 
  private:
   void enter(Stage stage, const World& world);
@@ -60,6 +65,7 @@ class CollisionCycle {
   Stage m_stage = Stage::Idle;
   std::int64_t m_number = 0;
   std::size_t m_cursor = 0;
+  std::int64_t m_tasks = 0;
   std::vector<std::pair<std::int32_t, std::int32_t>> m_queries;    // (body, vertex) to query
   std::vector<std::pair<std::int32_t, std::int32_t>> m_triangles;  // (body, surface triangle) to hash
   std::vector<std::int32_t> m_layer_items;                         // contacts of the current layer

@@ -76,6 +76,14 @@ TEST_CASE("cli: run exit codes 0, 1 and 2", "[cli]") {
   CHECK_THAT(bad.err, Catch::Matchers::Contains("--set scene.dt=-1: scene.dt: must be positive"));
   CHECK_FALSE(fs::exists(dir / "bad"));
   CHECK(cli({"run"}).code == 2);
+  CHECK(cli({"run", "plates20", "--budget-ms", "5", "--budget-work", "100"}).code == 2);  // one budget at most
+  CHECK(cli({"run", "plates20", "--budget-ms", "-1"}).code == 2);
+  const Result wall = cli({"run", "plates20", "--method", "interruptible", "--budget-ms", "2", "--steps", "5",
+                           "--out", (dir / "wall").string(), "--quiet"});
+  CHECK(wall.code == 0);
+  const auto wall_run = nlohmann::json::parse(tcb::read_file(dir / "wall" / "run.json"));
+  CHECK(wall_run["budget"]["kind"] == "wall_ms");
+  CHECK(wall_run["summary"]["overshoot_pct"]["p99"].is_number());
   // Method settings go through --set like scene keys, and are validated.
   CHECK(cli({"run", "plates20", "--method", "every_nth", "--set", "every_nth.n=3", "--steps", "4", "--out",
              (dir / "nth").string(), "--quiet"})

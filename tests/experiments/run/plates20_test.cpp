@@ -37,3 +37,26 @@ TEST_CASE("plates20: full keeps the 20-plate stack standing for the whole scene"
   CHECK(final_top > 0.9 * (19.5 * thickness));
   CHECK(world.max_speed_m_per_s() < 0.05);
 }
+
+TEST_CASE("interruptible without a budget gives full's forces on every step of plates20 and cube_drop",
+          "[scene][slow]") {
+  for (const char* name : {"cube_drop", "plates20"}) {
+    INFO(name);
+    const SceneDesc scene = load_scene_file(resolve_scene(name, default_scene_dirs()));
+    World a = build_world(scene), b = build_world(scene);
+    auto full = make_handler("full", scene);
+    auto interruptible = make_handler("interruptible", scene);
+    full->init(a, scene);
+    interruptible->init(b, scene);
+    for (std::int64_t s = 0; s < scene.steps; ++s) {
+      Budget ua = Budget::unlimited(), ub = Budget::unlimited();
+      full->step(a, ua);
+      interruptible->step(b, ub);
+      for (std::size_t i = 0; i < a.bodies.size(); ++i)
+        REQUIRE(a.bodies[i].contact_force_n == b.bodies[i].contact_force_n);
+      a.step(scene.dt_s);
+      b.step(scene.dt_s);
+    }
+    for (std::size_t i = 0; i < a.bodies.size(); ++i) CHECK(a.bodies[i].x_m == b.bodies[i].x_m);
+  }
+}

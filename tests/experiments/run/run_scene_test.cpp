@@ -169,3 +169,38 @@ TEST_CASE("runs are deterministic apart from timings", "[run]") {
   fs::remove_all(a);
   fs::remove_all(b);
 }
+
+TEST_CASE("under a work budget two runs are identical apart from timings", "[run]") {
+  const fs::path a = fresh_dir("work_a"), b = fresh_dir("work_b");
+  const SceneDesc scene = load_scene_file(resolve_scene("plates20", default_scene_dirs()));
+  for (const auto& dir : {a, b}) {
+    RunOptions options;
+    options.method = "interruptible";
+    options.budget = {BudgetSpec::Kind::Work, 20000};
+    options.steps = 60;
+    options.out_dir = dir;
+    CHECK(run_scene(scene, options).status == "ok");
+  }
+  const auto la = lines_of(a / "steps.csv"), lb = lines_of(b / "steps.csv");
+  REQUIRE(la.size() == 61);
+  const auto without_timing = [](const std::string& line) {  // drop handling_ms (3) and dynamics_ms (20)
+    std::vector<std::string> cells;
+    std::stringstream in(line);
+    for (std::string c; std::getline(in, c, ',');) cells.push_back(c);
+    cells.erase(cells.begin() + 19);
+    cells.erase(cells.begin() + 2);
+    return cells;
+  };
+  int interrupted = 0;
+  for (std::size_t i = 1; i < la.size(); ++i) {
+    REQUIRE(without_timing(la[i]) == without_timing(lb[i]));
+    interrupted += without_timing(la[i])[5] == "0";  // cycle_done
+  }
+  CHECK(interrupted > 10);  // the budget really interrupted cycles
+  const auto run = nlohmann::json::parse(read_file(a / "run.json"));
+  CHECK(run["budget"]["kind"] == "work");
+  CHECK(run["budget"]["value"] == 20000);
+  CHECK(run["summary"]["cycle_steps"]["max"].get<double>() > 1.0);
+  fs::remove_all(a);
+  fs::remove_all(b);
+}
