@@ -20,6 +20,7 @@ Contact make_contact(const World& world, std::int32_t object, std::int32_t verte
   c.other = other;
   c.tet = tet;
   c.barycentric = barycentric_weights(world.bodies[object].x_m[vertex], x[t[0]], x[t[1]], x[t[2]], x[t[3]]);
+  c.detected_step = world.step_index;
   return c;
 }
 

@@ -86,10 +86,7 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
       case Stage::QueryPoints:
         if (m_cursor < m_queries.size()) {
           const auto [body, vertex] = m_queries[m_cursor++];
-          const auto hit = m_mode == DetectionMode::SpatialHash
-                               ? m_detector.query_point(world, m_pairs, body, vertex, work)
-                               : brute_force_query_point(world, m_pairs, body, vertex, work);
-          if (hit) add_contact(*hit);
+          if (const auto hit = detect(world, body, vertex, work)) add_contact(*hit);
         }
         if (m_cursor == m_queries.size()) enter(Stage::HashSurface, world);
         break;
@@ -106,7 +103,18 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
       case Stage::BorderDepth:
         if (m_cursor < m_contacts.size()) {
           Contact& c = m_contacts[m_cursor++];
-          work = border_point_depth(world, c, m_contacts, m_lookup, m_surface);
+          if (c.detected_step != world.step_index) {  // positions changed since detection
+            if (const auto again = detect(world, c.object, c.vertex, work)) {
+              c.other = again->other;
+              c.tet = again->tet;
+              c.barycentric = again->barycentric;
+              c.detected_step = again->detected_step;
+            } else {
+              c.separated = true;
+              m_lookup[c.object][c.vertex] = -1;
+            }
+          }
+          if (!c.separated) work += border_point_depth(world, c, m_contacts, m_lookup, m_surface);
         }
         if (m_cursor == m_contacts.size()) enter(Stage::Propagate, world);
         break;
@@ -139,6 +147,12 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
   return m_stage == Stage::Done;
 }
 
+std::optional<Contact> CollisionCycle::detect(const World& world, std::int32_t body, std::int32_t vertex,
+                                              std::uint64_t& work) {
+  return m_mode == DetectionMode::SpatialHash ? m_detector.query_point(world, m_pairs, body, vertex, work)
+                                              : brute_force_query_point(world, m_pairs, body, vertex, work);
+}
+
 std::size_t CollisionCycle::queries_done() const {
   if (m_stage == Stage::Idle || m_stage == Stage::HashTets) return 0;
   return m_stage == Stage::QueryPoints ? m_cursor : m_queries.size();
@@ -151,7 +165,7 @@ std::size_t CollisionCycle::forces_computed() const {
 
 std::int64_t CollisionCycle::depth_fallback() const {
   return std::count_if(m_contacts.begin(), m_contacts.end(),
-                       [](const Contact& c) { return c.depth_source == DepthSource::None; });
+                       [](const Contact& c) { return c.depth_source == DepthSource::None && !c.separated; });
 }
 
 }  // namespace tcb

@@ -13,10 +13,18 @@
 ///   Propagate    one propagated point per task, layer by layer
 ///   Forces       one penalty force per task
 /// A task always reads the world's current positions: work resumed in a later
-/// step uses the positions of that step. Nothing is applied to the world here:
-/// handlers decide which forces to apply.
+/// step uses the positions of that step. In particular a point detected in an
+/// earlier step is re-detected (one point query) before its border-edge work:
+/// it may have moved to another tet, or out of the object, since; then it is
+/// marked separated and is inert (no depth, no force, not a colliding
+/// neighbour). Without this, a point that drifted just outside a face while the
+/// cycle was interrupted kept only a grazing border edge through a side face
+/// and got a depth of a whole edge length. A cycle that completes within one
+/// step never re-detects. Nothing is applied to the world here: handlers
+/// decide which forces to apply.
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "method/depth/penetration_depth.hpp"
@@ -55,6 +63,7 @@ class CollisionCycle {
  private:
   void enter(Stage stage, const World& world);
   void add_contact(const Contact& c);
+  std::optional<Contact> detect(const World& world, std::int32_t body, std::int32_t vertex, std::uint64_t& work);
   void build_next_layer(const World& world);
 
   CollisionSettings m_settings;

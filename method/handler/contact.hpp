@@ -24,6 +24,8 @@ struct Contact {
   std::array<double, 4> barycentric{};  ///< of the point in the tet at detection; sums to 1
   DepthSource depth_source = DepthSource::None;
   std::int32_t layer = -1;              ///< propagation layer (0 for border points)
+  std::int64_t detected_step = 0;       ///< World::step_index when it was detected
+  bool separated = false;               ///< re-checked in a later step and found outside: inert
   double depth_m = 0.0;
   Vec3 direction = Vec3::Zero();        ///< unit; pushes the point out of `other`
   Vec3 force_n = Vec3::Zero();          ///< on the point; the reaction goes to the tet

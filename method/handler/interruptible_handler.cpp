@@ -31,6 +31,7 @@ StepReport InterruptibleHandler::step(World& world, Budget& budget) {
   const std::size_t with_force = m_cycle->forces_computed();
   for (std::size_t i = 0; i < contacts.size(); ++i) {
     const Contact& c = contacts[i];
+    if (c.separated) continue;  // left the object since detection: no force, history kept until the cycle ends
     if (c.depth_source != DepthSource::None) {
       const Vec3 f = i < with_force ? c.force_n
                                     : penalty_force(world, c, m_cycle->settings().response(c.object, c.other),
@@ -65,7 +66,9 @@ StepReport InterruptibleHandler::step(World& world, Budget& budget) {
     for (std::size_t b = 0; b < m_history.size(); ++b)
       for (std::size_t v = 0; v < m_history[b].size(); ++v)
         if (!m_has_history[b][v]) m_history[b][v] = ForceHistory{};
-    m_completed = contacts;
+    m_completed.clear();
+    for (const Contact& c : contacts)
+      if (!c.separated) m_completed.push_back(c);
     m_in_progress = false;
   }
   report.colliding_points = static_cast<std::int64_t>(m_completed.size());
