@@ -31,7 +31,8 @@ StepReport InterruptibleHandler::step(World& world, Budget& budget) {
   const std::size_t with_force = m_cycle->forces_computed();
   for (std::size_t i = 0; i < contacts.size(); ++i) {
     const Contact& c = contacts[i];
-    if (c.separated) continue;  // left the object since detection: no force, history kept until the cycle ends
+    m_applied[c.object][c.vertex] = m_step;  // decided here, so the history loop below leaves it alone
+    if (c.separated) continue;               // left the object since detection: no force
     if (c.depth_source != DepthSource::None) {
       const Vec3 f = i < with_force ? c.force_n
                                     : penalty_force(world, c, m_cycle->settings().response(c.object, c.other),
@@ -42,7 +43,6 @@ StepReport InterruptibleHandler::step(World& world, Budget& budget) {
       apply_contact_force(world, c, extrapolated_force(m_history[c.object][c.vertex], m_step));
       ++report.estimated_forces;
     }
-    m_applied[c.object][c.vertex] = m_step;
   }
   if (!done && m_extrapolate) {
     // Points in contact in earlier cycles that this cycle has not reached yet.
