@@ -30,6 +30,17 @@ std::vector<std::string> lines_of(const fs::path& file) {
   return lines;
 }
 
+// The cells of a steps.csv row without the two timing columns, handling_ms
+// (3rd) and dynamics_ms (20th): everything else must be reproducible.
+std::vector<std::string> without_timing(const std::string& line) {
+  std::vector<std::string> cells;
+  std::stringstream in(line);
+  for (std::string c; std::getline(in, c, ',');) cells.push_back(c);
+  cells.erase(cells.begin() + 19);
+  cells.erase(cells.begin() + 2);
+  return cells;
+}
+
 SceneDesc small_drop() {
   return parse_scene(R"([scene]
 dt = 0.001
@@ -157,14 +168,6 @@ TEST_CASE("runs are deterministic apart from timings", "[run]") {
   }
   const auto la = lines_of(a / "steps.csv"), lb = lines_of(b / "steps.csv");
   REQUIRE(la.size() == lb.size());
-  const auto without_timing = [](const std::string& line) {  // drop handling_ms (3) and dynamics_ms (20)
-    std::vector<std::string> cells;
-    std::stringstream in(line);
-    for (std::string c; std::getline(in, c, ',');) cells.push_back(c);
-    cells.erase(cells.begin() + 19);
-    cells.erase(cells.begin() + 2);
-    return cells;
-  };
   for (std::size_t i = 1; i < la.size(); ++i) REQUIRE(without_timing(la[i]) == without_timing(lb[i]));
   fs::remove_all(a);
   fs::remove_all(b);
@@ -183,14 +186,6 @@ TEST_CASE("under a work budget two runs are identical apart from timings", "[run
   }
   const auto la = lines_of(a / "steps.csv"), lb = lines_of(b / "steps.csv");
   REQUIRE(la.size() == 61);
-  const auto without_timing = [](const std::string& line) {  // drop handling_ms (3) and dynamics_ms (20)
-    std::vector<std::string> cells;
-    std::stringstream in(line);
-    for (std::string c; std::getline(in, c, ',');) cells.push_back(c);
-    cells.erase(cells.begin() + 19);
-    cells.erase(cells.begin() + 2);
-    return cells;
-  };
   int interrupted = 0;
   for (std::size_t i = 1; i < la.size(); ++i) {
     REQUIRE(without_timing(la[i]) == without_timing(lb[i]));
