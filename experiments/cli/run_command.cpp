@@ -29,6 +29,9 @@ class RunCommand final : public Command {
     auto* work = app->add_option("--budget-work", m_budget_work,
                                  "Budget per step in work units (bit-identical on every machine)");
     wall->excludes(work);
+    app->add_option("--oracle", m_oracle,
+                    "When the exact oracle runs: off, every, or every:K (its time is oracle_ms, never handling)")
+        ->capture_default_str();
     app->add_option("--steps", m_steps, "Number of steps (default: the scene's)")->check(CLI::NonNegativeNumber);
     app->add_option("--seed", m_options.seed, "Seed, recorded in run.json")->capture_default_str();
     app->add_option("--set", m_options.overrides, "Override a scene key, e.g. scene.dt=0.002 (repeatable)");
@@ -43,6 +46,7 @@ class RunCommand final : public Command {
     const auto path = resolve_scene(m_scene, default_scene_dirs());
     const SceneDesc scene = load_scene_file(path, m_options.overrides);
     if (m_steps >= 0) m_options.steps = m_steps;
+    m_options.oracle = parse_oracle_schedule(m_oracle);
     if (app->count("--budget-ms")) m_options.budget = {BudgetSpec::Kind::WallMs, m_budget_ms};
     if (app->count("--budget-work")) m_options.budget = {BudgetSpec::Kind::Work, static_cast<double>(m_budget_work)};
     m_options.out_dir = m_out.empty() ? std::filesystem::path("results/runs") / (scene.name + "-" + m_options.method)
@@ -69,6 +73,7 @@ class RunCommand final : public Command {
  private:
   std::string m_scene, m_out;
   std::int64_t m_steps = -1;
+  std::string m_oracle = "off";
   double m_budget_ms = 0.0;
   std::uint64_t m_budget_work = 0;
   bool m_quiet = false;

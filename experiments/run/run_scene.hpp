@@ -25,9 +25,19 @@ struct BudgetSpec {
   double value = 0.0;  ///< milliseconds, or work units
 };
 
+/// When the oracle runs: never (every = 0), or on every k-th step.
+struct OracleSchedule {
+  std::int64_t every = 0;
+  bool due(std::int64_t step) const { return every > 0 && step % every == 0; }
+};
+
+/// Parses "off", "every" or "every:K"; InputError otherwise.
+OracleSchedule parse_oracle_schedule(const std::string& text);
+
 struct RunOptions {
   std::string method = "full";
   BudgetSpec budget;
+  OracleSchedule oracle;
   std::optional<std::int64_t> steps;  ///< overrides the scene's step count
   std::uint64_t seed = 0;
   std::filesystem::path out_dir;
