@@ -1,4 +1,5 @@
 #include "oracle/inside_oracle.hpp"
+#include "oracle/tunneling.hpp"
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
@@ -8,6 +9,7 @@
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/helpers.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -43,6 +45,51 @@ std::unique_ptr<SurfaceQuery> surface_of(const Body& body) {
 }
 
 }  // namespace
+
+namespace {
+
+Vec3 centre_of_mass(const Body& b) {
+  Vec3 c = Vec3::Zero();
+  double m = 0.0;
+  for (std::size_t i = 0; i < b.x_m.size(); ++i) {
+    c += b.mass_kg[i] * b.x_m[i];
+    m += b.mass_kg[i];
+  }
+  return m > 0.0 ? Vec3(c / m) : c;
+}
+
+// (a, b) pairs with a's centre strictly inside b; `open` collects bodies
+// whose surface cannot be judged.
+std::vector<std::pair<std::size_t, std::size_t>> centres_inside(const World& world, std::vector<std::string>& open) {
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;
+  for (std::size_t b = 0; b < world.bodies.size(); ++b) {
+    const auto surface = surface_of(world.bodies[b]);
+    if (!surface) {
+      open.push_back("'" + world.bodies[b].name + "': surface not closed, tunnelling undefined");
+      continue;
+    }
+    const CGAL::Side_of_triangle_mesh<Mesh, K> side(*surface->tree);
+    for (std::size_t a = 0; a < world.bodies.size(); ++a) {
+      if (a == b) continue;
+      const Vec3 c = centre_of_mass(world.bodies[a]);
+      if (side(Point(c.x(), c.y(), c.z())) == CGAL::ON_BOUNDED_SIDE) pairs.emplace_back(std::min(a, b), std::max(a, b));
+    }
+  }
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  return pairs;
+}
+
+}  // namespace
+
+TunnelingResult count_tunneling(const World& initial, const World& final_world) {
+  TunnelingResult r;
+  std::vector<std::string> ignored;
+  const auto before = centres_inside(initial, ignored);
+  for (const auto& pair : centres_inside(final_world, r.unmeasured))
+    if (!std::binary_search(before.begin(), before.end(), pair)) ++r.pairs;
+  return r;
+}
 
 OracleFrame compute_inside_oracle(const World& world) {
   OracleFrame frame;

@@ -10,6 +10,8 @@
 
 #include "baselines/registry.hpp"
 #include "experiments/metrics/distribution.hpp"
+#include "experiments/metrics/jitter.hpp"
+#include "oracle/tunneling.hpp"
 #include "experiments/metrics/oracle_comparison.hpp"
 #include "method/detection/spatial_hash.hpp"
 #include "experiments/results/steps_csv.hpp"
@@ -95,7 +97,9 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
   // Everything that can fail on bad input happens before the directory exists.
   std::unique_ptr<CollisionHandler> handler = make_handler(options.method, scene);
   World world = build_world(scene);
+  const World initial = build_world(scene);  // for tunnelling: which pairs started interlocked
   handler->init(world, scene);  // not timed
+  JitterMeter jitter;
   const std::vector<std::string> warnings = handler->warnings();
   if (options.on_warning)
     for (const auto& w : warnings) options.on_warning(w);
@@ -191,6 +195,7 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
     }
     row.max_speed = world.max_speed_m_per_s();
     dynamics_ms.push_back(row.dynamics_ms);
+    jitter.record(world, row.step, steps_total);
     solver_iterations.push_back(static_cast<double>(row.solver_iterations));
     csv.write(row);
     outcome.steps_done = s + 1;
@@ -244,9 +249,18 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
   summary["max_depth"] = oracle_steps > 0 ? Json(max_depth) : Json(nullptr);
   summary["oracle_steps"] = oracle_steps;
   summary["oracle_ms"] = distribution_json(oracle_ms);
+  summary["jitter"] = scene.jitter_measure.empty() || jitter.samples() == 0 ? Json(nullptr) : Json(jitter.rms_m_per_s());
+  if (std::isfinite(world.max_speed_m_per_s())) {
+    const TunnelingResult tunneling = count_tunneling(initial, world);
+    summary["tunneling"] = tunneling.pairs;
+    unmeasured.insert(tunneling.unmeasured.begin(), tunneling.unmeasured.end());
+  } else {
+    summary["tunneling"] = nullptr;  // positions are not finite: nothing to judge
+    unmeasured.insert("tunnelling: the final state is not finite");
+  }
   summary["oracle_unmeasured"] = std::vector<std::string>(unmeasured.begin(), unmeasured.end());
-  // Not built yet (oracle issue): latency, overlap volume, jitter, tunnelling.
-  for (const char* key : {"latency_steps", "overlap_volume_max", "jitter", "tunneling"}) summary[key] = nullptr;
+  // Not built yet (oracle issue): latency and overlap volume.
+  for (const char* key : {"latency_steps", "overlap_volume_max"}) summary[key] = nullptr;
   summary["nan_steps"] = nan_steps;
   summary["work_units_total"] = work_total;
   summary["colliding_points_max"] = colliding_max;

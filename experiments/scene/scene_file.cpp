@@ -366,6 +366,14 @@ SceneDesc parse_scene(const std::string& text, const std::filesystem::path& path
     }
     r.finish();
   }
+  if (const toml::table* m = top.table("metrics")) {
+    TableReader r(*m, "metrics", file);
+    if (const auto jitter = r.string("jitter")) {
+      if (*jitter != "vertical_velocity_rms") r.fail("jitter", "must be \"vertical_velocity_rms\"");
+      scene.jitter_measure = *jitter;
+    }
+    r.finish();
+  }
   for (const std::string& method : method_names) {
     const toml::table* t = top.table(method);
     if (!t) continue;

@@ -90,6 +90,8 @@ struct SceneDesc {
   std::vector<ObjectDesc> objects;
   /// A vertex faster than this marks the run unstable (an explosion).
   double max_speed_m_per_s = 1.0e3;
+  /// [metrics] jitter: the scene's jitter measure ("vertical_velocity_rms"), empty for none.
+  std::string jitter_measure;
 };
 
 /// Loads each distinct mesh once and builds the world. Throws InputError for a

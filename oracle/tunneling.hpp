@@ -1,0 +1,24 @@
+#pragma once
+/// Tunnelling: pairs of objects that ended up passing through each other.
+/// A pair counts when the centre of mass of one lies strictly inside the other
+/// (exact Side_of_triangle_mesh on the other's closed surface). Pairs whose
+/// centres were already inside each other at the start do not count (the
+/// caller passes the initial world). Bodies with open surfaces cannot be
+/// judged and are listed in `unmeasured`. Part of the oracle: independent of
+/// method/.
+
+#include <string>
+#include <vector>
+
+#include "sim/world/world.hpp"
+
+namespace tcb {
+
+struct TunnelingResult {
+  std::int64_t pairs = 0;
+  std::vector<std::string> unmeasured;
+};
+
+TunnelingResult count_tunneling(const World& initial, const World& final_world);
+
+}  // namespace tcb
