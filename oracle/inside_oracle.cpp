@@ -48,16 +48,6 @@ std::unique_ptr<SurfaceQuery> surface_of(const Body& body) {
 
 namespace {
 
-Vec3 centre_of_mass(const Body& b) {
-  Vec3 c = Vec3::Zero();
-  double m = 0.0;
-  for (std::size_t i = 0; i < b.x_m.size(); ++i) {
-    c += b.mass_kg[i] * b.x_m[i];
-    m += b.mass_kg[i];
-  }
-  return m > 0.0 ? Vec3(c / m) : c;
-}
-
 // (a, b) pairs with a's centre strictly inside b; `open` collects bodies
 // whose surface cannot be judged.
 std::vector<std::pair<std::size_t, std::size_t>> centres_inside(const World& world, std::vector<std::string>& open) {
@@ -71,7 +61,7 @@ std::vector<std::pair<std::size_t, std::size_t>> centres_inside(const World& wor
     const CGAL::Side_of_triangle_mesh<Mesh, K> side(*surface->tree);
     for (std::size_t a = 0; a < world.bodies.size(); ++a) {
       if (a == b) continue;
-      const Vec3 c = centre_of_mass(world.bodies[a]);
+      const Vec3 c = centre_of_mass_m(world.bodies[a]);
       if (side(Point(c.x(), c.y(), c.z())) == CGAL::ON_BOUNDED_SIDE) pairs.emplace_back(std::min(a, b), std::max(a, b));
     }
   }

@@ -5,6 +5,18 @@
 
 namespace tcb {
 
+Vec3 centre_of_mass_m(const Body& b) {
+  Vec3 c = Vec3::Zero(), plain = Vec3::Zero();
+  double m = 0.0;
+  for (std::size_t i = 0; i < b.x_m.size(); ++i) {
+    c += b.mass_kg[i] * b.x_m[i];
+    plain += b.x_m[i];
+    m += b.mass_kg[i];
+  }
+  if (m > 0.0) return c / m;
+  return b.x_m.empty() ? plain : Vec3(plain / static_cast<double>(b.x_m.size()));
+}
+
 void World::step(double dt_s) {
   for (Body& body : bodies) {
     if (body.passive || !body.model) continue;

@@ -34,6 +34,9 @@ struct Body {
   std::vector<Vec3> external_force_n;   ///< scratch of step()
 };
 
+/// Mass-weighted centre of a body's vertices (m); the plain mean when it has no mass.
+Vec3 centre_of_mass_m(const Body& body);
+
 class World {
  public:
   std::vector<Body> bodies;

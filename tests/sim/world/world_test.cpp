@@ -25,15 +25,7 @@ SceneDesc cube_on_ground(double size_m, double youngs_pa, double dt_s, MaterialM
   return scene;
 }
 
-Vec3 centre(const Body& b) {
-  Vec3 c = Vec3::Zero();
-  double m = 0.0;
-  for (std::size_t i = 0; i < b.x_m.size(); ++i) {
-    c += b.mass_kg[i] * b.x_m[i];
-    m += b.mass_kg[i];
-  }
-  return c / m;
-}
+Vec3 centre(const Body& b) { return centre_of_mass_m(b); }
 
 double lowest_y(const Body& b) {
   double y = b.x_m[0].y();
