@@ -25,6 +25,7 @@ StepReport EveryNthHandler::step(World& world, Budget& budget) {
     if (!run_cycle) {  // held forces are not computed from this step's depths
       report.estimated_forces = report.exact_forces;
       report.exact_forces = 0;
+      report.exact_points.clear();
     }
   } else {
     report.colliding_points = static_cast<std::int64_t>(m_cycle->contacts().size());

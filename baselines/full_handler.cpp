@@ -9,6 +9,7 @@ void apply_cycle_forces(World& world, const CollisionCycle& cycle, StepReport& r
     if (c.depth_source == DepthSource::None) continue;
     apply_contact_force(world, c, c.force_n);
     ++report.exact_forces;
+    report.exact_points.emplace_back(c.object, c.vertex);
   }
   report.colliding_points = static_cast<std::int64_t>(cycle.contacts().size());
   report.depth_fallback = cycle.depth_fallback();

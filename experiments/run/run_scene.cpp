@@ -11,6 +11,7 @@
 #include "baselines/registry.hpp"
 #include "experiments/metrics/distribution.hpp"
 #include "experiments/metrics/jitter.hpp"
+#include "experiments/metrics/latency.hpp"
 #include "oracle/tunneling.hpp"
 #include "experiments/metrics/oracle_comparison.hpp"
 #include "method/detection/spatial_hash.hpp"
@@ -100,6 +101,7 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
   const World initial = build_world(scene);  // for tunnelling: which pairs started interlocked
   handler->init(world, scene);  // not timed
   JitterMeter jitter;
+  LatencyMeter latency(world);
   const std::vector<std::string> warnings = handler->warnings();
   if (options.on_warning)
     for (const auto& w : warnings) options.on_warning(w);
@@ -147,6 +149,7 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
     if (options.oracle.due(world.step_index + 1)) {  // on the positions the handler just saw
       const auto t_oracle = Clock::now();
       const OracleFrame frame = compute_inside_oracle(world);
+      latency.record_oracle(world.step_index + 1, frame);
       const OracleComparison cmp = compare_with_oracle(handler->contacts(), frame);
       row.oracle_ms = ms_since(t_oracle);
       row.oracle_points = cmp.oracle_points;
@@ -163,6 +166,7 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
       unmeasured.insert(frame.unmeasured.begin(), frame.unmeasured.end());
       ++oracle_steps;
     }
+    if (options.oracle.every > 0) latency.record_forces(world.step_index + 1, report.exact_points);
     const auto t0 = Clock::now();
     world.step(scene.dt_s);
     row.dynamics_ms = ms_since(t0);
@@ -259,8 +263,16 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
     unmeasured.insert("tunnelling: the final state is not finite");
   }
   summary["oracle_unmeasured"] = std::vector<std::string>(unmeasured.begin(), unmeasured.end());
-  // Not built yet (oracle issue): latency and overlap volume.
-  for (const char* key : {"latency_steps", "overlap_volume_max"}) summary[key] = nullptr;
+  if (oracle_steps == 0) {
+    summary["latency_steps"] = nullptr;
+  } else {
+    const Distribution l = summarize(latency.latencies());
+    summary["latency_steps"] = latency.latencies().empty()
+                                   ? Json(nullptr)
+                                   : Json{{"mean", l.mean}, {"p95", l.p95}, {"max", l.max}};
+    summary["unserved_penetrations"] = latency.unserved();
+  }
+  summary["overlap_volume_max"] = nullptr;  // not built yet (oracle issue)
   summary["nan_steps"] = nan_steps;
   summary["work_units_total"] = work_total;
   summary["colliding_points_max"] = colliding_max;

@@ -25,6 +25,9 @@ struct StepReport {
   std::int64_t exact_forces = 0;   ///< points given a depth-based force this step
   std::int64_t estimated_forces = 0;  ///< points given an estimated or extrapolated force
   std::int64_t depth_fallback = 0; ///< colliding points that got no depth (no border path)
+  /// (body, vertex) of the points given a depth-based force this step (for
+  /// the latency metric).
+  std::vector<std::pair<std::int32_t, std::int32_t>> exact_points;
 };
 
 class CollisionHandler {

@@ -39,6 +39,7 @@ StepReport InterruptibleHandler::step(World& world, Budget& budget) {
                                                     m_cycle->settings().dt_s);
       apply_contact_force(world, c, f);
       ++report.exact_forces;
+      report.exact_points.emplace_back(c.object, c.vertex);
     } else if (!done && m_extrapolate && m_has_history[c.object][c.vertex]) {
       apply_contact_force(world, c, extrapolated_force(m_history[c.object][c.vertex], m_step));
       ++report.estimated_forces;

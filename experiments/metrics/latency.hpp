@@ -1,0 +1,39 @@
+#pragma once
+/// Latency of collision response (CONTRACT.md summary.latency_steps; seed
+/// 000: a fast heavy sphere stays correct only with latency <= 2 frames).
+///
+/// Per vertex, an episode starts at the first oracle step that finds it truly
+/// inside another object; its latency is the number of steps from there to the
+/// first step in which the handler gives it a depth-based force (0 when both
+/// happen in the same step). An episode that ends (the oracle no longer finds
+/// the vertex inside) before any depth-based force is counted as unserved, not
+/// as a latency. Exact with --oracle every; with every:K the start of an
+/// episode is only known to within K steps.
+
+#include <cstdint>
+#include <vector>
+
+#include "experiments/metrics/distribution.hpp"
+#include "oracle/inside_oracle.hpp"
+#include "sim/world/world.hpp"
+
+namespace tcb {
+
+class LatencyMeter {
+ public:
+  explicit LatencyMeter(const World& world);
+  /// Call on steps where the oracle ran, with its frame.
+  void record_oracle(std::int64_t step, const OracleFrame& frame);
+  /// Call every step with the points given a depth-based force in it.
+  void record_forces(std::int64_t step, const std::vector<std::pair<std::int32_t, std::int32_t>>& exact_points);
+  const std::vector<double>& latencies() const { return m_latencies; }
+  std::int64_t unserved() const { return m_unserved; }
+
+ private:
+  std::vector<std::vector<std::int64_t>> m_start;  // episode start step per vertex, -1 none
+  std::vector<std::vector<char>> m_served;
+  std::vector<double> m_latencies;
+  std::int64_t m_unserved = 0;
+};
+
+}  // namespace tcb
