@@ -72,10 +72,13 @@ std::vector<std::pair<std::size_t, std::size_t>> centres_inside(const World& wor
 
 }  // namespace
 
-TunnelingResult count_tunneling(const World& initial, const World& final_world) {
-  TunnelingResult r;
+BodyPairs interlocked_pairs(const World& world) {
   std::vector<std::string> ignored;
-  const auto before = centres_inside(initial, ignored);
+  return centres_inside(world, ignored);
+}
+
+TunnelingResult count_tunneling(const BodyPairs& before, const World& final_world) {
+  TunnelingResult r;
   for (const auto& pair : centres_inside(final_world, r.unmeasured))
     if (!std::binary_search(before.begin(), before.end(), pair)) ++r.pairs;
   return r;

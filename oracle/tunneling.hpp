@@ -3,7 +3,7 @@
 /// A pair counts when the centre of mass of one lies strictly inside the other
 /// (exact Side_of_triangle_mesh on the other's closed surface). Pairs whose
 /// centres were already inside each other at the start do not count (the
-/// caller passes the initial world). Bodies with open surfaces cannot be
+/// caller records them with interlocked_pairs() before the run). Bodies with open surfaces cannot be
 /// judged and are listed in `unmeasured`. Part of the oracle: independent of
 /// method/.
 
@@ -19,6 +19,11 @@ struct TunnelingResult {
   std::vector<std::string> unmeasured;
 };
 
-TunnelingResult count_tunneling(const World& initial, const World& final_world);
+using BodyPairs = std::vector<std::pair<std::size_t, std::size_t>>;
+
+/// Sorted (a, b), a < b, where one centre lies strictly inside the other.
+BodyPairs interlocked_pairs(const World& world);
+
+TunnelingResult count_tunneling(const BodyPairs& initially_interlocked, const World& final_world);
 
 }  // namespace tcb

@@ -98,7 +98,7 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
   // Everything that can fail on bad input happens before the directory exists.
   std::unique_ptr<CollisionHandler> handler = make_handler(options.method, scene);
   World world = build_world(scene);
-  const World initial = build_world(scene);  // for tunnelling: which pairs started interlocked
+  const BodyPairs initially_interlocked = interlocked_pairs(world);  // not tunnelling when they end so
   handler->init(world, scene);  // not timed
   JitterMeter jitter;
   LatencyMeter latency(world);
@@ -255,7 +255,7 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
   summary["oracle_ms"] = distribution_json(oracle_ms);
   summary["jitter"] = scene.jitter_measure.empty() || jitter.samples() == 0 ? Json(nullptr) : Json(jitter.rms_m_per_s());
   if (std::isfinite(world.max_speed_m_per_s())) {
-    const TunnelingResult tunneling = count_tunneling(initial, world);
+    const TunnelingResult tunneling = count_tunneling(initially_interlocked, world);
     summary["tunneling"] = tunneling.pairs;
     unmeasured.insert(tunneling.unmeasured.begin(), tunneling.unmeasured.end());
   } else {

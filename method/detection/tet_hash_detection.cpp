@@ -24,12 +24,6 @@ Contact make_contact(const World& world, std::int32_t object, std::int32_t verte
   return c;
 }
 
-std::vector<char> degenerate_flags(const TetMesh& mesh) {
-  std::vector<char> flags(mesh.tet_count(), 0);
-  for (auto id : mesh.degenerate_tet_ids) flags[id] = 1;
-  return flags;
-}
-
 }  // namespace
 
 TetHashDetector::TetHashDetector(const World& world, const DetectionSettings& settings) {
@@ -46,14 +40,13 @@ TetHashDetector::TetHashDetector(const World& world, const DetectionSettings& se
   m_hash = SpatialHash(settings.cell_size_m, table, settings.hash);
 }
 
-std::uint64_t TetHashDetector::hash_tets(const World& world) {
-  const CollisionPairs pairs(world);
+std::uint64_t TetHashDetector::hash_tets(const World& world, const CollisionPairs& pairs) {
   m_hash.begin_epoch();
   std::uint64_t work = 0;
   for (std::size_t b = 0; b < world.bodies.size(); ++b) {
     if (!pairs.has_partner(b)) continue;
     const Body& body = world.bodies[b];
-    const auto degenerate = degenerate_flags(*body.mesh);
+    const std::vector<char>& degenerate = body.mesh->is_degenerate;
     for (std::size_t t = 0; t < body.mesh->tet_count(); ++t) {
       if (degenerate[t]) continue;
       const Tet& tet = body.mesh->tets[t];
@@ -107,7 +100,7 @@ std::optional<Contact> brute_force_query_point(const World& world, const Collisi
   for (std::size_t b = 0; b < world.bodies.size(); ++b) {
     if (!pairs.enabled(object, b)) continue;
     const Body& B = world.bodies[b];
-    const auto degenerate = degenerate_flags(*B.mesh);
+    const std::vector<char>& degenerate = B.mesh->is_degenerate;
     for (std::size_t t = 0; t < B.mesh->tet_count(); ++t) {
       const Tet& tet = B.mesh->tets[t];
       if (degenerate[t] || (b == static_cast<std::size_t>(object) && incident(tet, vertex))) continue;

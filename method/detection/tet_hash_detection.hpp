@@ -31,7 +31,7 @@ class TetHashDetector {
   TetHashDetector(const World& world, const DetectionSettings& settings);
 
   /// Stage 1: hashes all tets at the current positions; returns work units.
-  std::uint64_t hash_tets(const World& world);
+  std::uint64_t hash_tets(const World& world, const CollisionPairs& pairs);
   /// Stage 2 for one vertex; adds its work units to `work`.
   std::optional<Contact> query_point(const World& world, const CollisionPairs& pairs, std::int32_t object,
                                      std::int32_t vertex, std::uint64_t& work);

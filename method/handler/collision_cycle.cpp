@@ -80,7 +80,7 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
     std::uint64_t work = 0;
     switch (m_stage) {
       case Stage::HashTets:
-        work = m_detector.hash_tets(world);
+        work = m_detector.hash_tets(world, m_pairs);
         enter(Stage::QueryPoints, world);
         break;
       case Stage::QueryPoints:

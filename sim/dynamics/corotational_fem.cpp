@@ -12,8 +12,7 @@ namespace tcb {
 CorotationalFem::CorotationalFem(const TetMesh& mesh, const std::vector<Vec3>& rest_m, const Material& material)
     : m_material(material), m_mass_kg(lumped_masses_kg(mesh, rest_m, material.density_kg_per_m3)) {
   const double lambda = lame_lambda_pa(material), mu = lame_mu_pa(material);
-  std::vector<char> degenerate(mesh.tet_count(), 0);
-  for (auto id : mesh.degenerate_tet_ids) degenerate[id] = 1;
+  const std::vector<char>& degenerate = mesh.is_degenerate;
   m_elements.reserve(mesh.tet_count());
   for (std::size_t i = 0; i < mesh.tet_count(); ++i) {
     if (degenerate[i]) continue;

@@ -9,8 +9,7 @@ namespace tcb {
 
 std::vector<double> lumped_masses_kg(const TetMesh& mesh, const std::vector<Vec3>& x, double density) {
   std::vector<double> m(mesh.vertex_count(), 0.0);
-  std::vector<char> degenerate(mesh.tet_count(), 0);
-  for (auto id : mesh.degenerate_tet_ids) degenerate[id] = 1;
+  const std::vector<char>& degenerate = mesh.is_degenerate;
   for (std::size_t i = 0; i < mesh.tet_count(); ++i) {
     if (degenerate[i]) continue;
     const Tet& t = mesh.tets[i];

@@ -8,8 +8,7 @@ namespace tcb {
 MassSpring::MassSpring(const TetMesh& mesh, const std::vector<Vec3>& rest, const Material& material)
     : m_material(material), m_mass_kg(lumped_masses_kg(mesh, rest, material.density_kg_per_m3)) {
   const double bulk_modulus = material.youngs_modulus_pa / (3.0 * (1.0 - 2.0 * material.poisson_ratio));
-  std::vector<char> degenerate(mesh.tet_count(), 0);
-  for (auto id : mesh.degenerate_tet_ids) degenerate[id] = 1;
+  const std::vector<char>& degenerate = mesh.is_degenerate;
   std::map<Edge, double> edge_volume;  // each edge's share of the incident tets' volume
   for (std::size_t i = 0; i < mesh.tet_count(); ++i) {
     if (degenerate[i]) continue;

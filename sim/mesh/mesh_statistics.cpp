@@ -22,8 +22,7 @@ MeshStatistics mesh_statistics(const TetMesh& mesh) {
   double edge_sum = 0.0;
   for (const Edge& e : mesh.edges) edge_sum += (x[e[1]] - x[e[0]]).norm();
   s.average_edge_m = mesh.edges.empty() ? 0.0 : edge_sum / static_cast<double>(mesh.edges.size());
-  std::vector<char> degenerate(mesh.tet_count(), 0);
-  for (auto id : mesh.degenerate_tet_ids) degenerate[id] = 1;
+  const std::vector<char>& degenerate = mesh.is_degenerate;
   double worst = 1.0, sum = 0.0;
   std::size_t counted = 0;
   for (std::size_t i = 0; i < mesh.tet_count(); ++i) {

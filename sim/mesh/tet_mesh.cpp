@@ -63,6 +63,7 @@ TetMesh build_tet_mesh(std::vector<Vec3> positions_m, std::vector<Tet> tets) {
   const auto n = static_cast<std::int64_t>(mesh.positions_m.size());
 
   std::vector<char> used(mesh.positions_m.size(), 0);
+  mesh.is_degenerate.assign(mesh.tets.size(), 0);
   for (std::size_t i = 0; i < mesh.tets.size(); ++i) {
     Tet& t = mesh.tets[i];
     for (int k = 0; k < 4; ++k) {
@@ -82,6 +83,7 @@ TetMesh build_tet_mesh(std::vector<Vec3> positions_m, std::vector<Tet> tets) {
     } else if (o == 0) {
       ++mesh.degenerate_tets;
       mesh.degenerate_tet_ids.push_back(static_cast<std::int32_t>(i));
+      mesh.is_degenerate[i] = 1;
     }
   }
   mesh.isolated_vertices = std::count(used.begin(), used.end(), 0);

@@ -70,6 +70,7 @@ struct TetMesh {
   std::int64_t inverted_tets = 0;     ///< given with negative orientation, repaired
   std::int64_t degenerate_tets = 0;   ///< exactly flat, kept but inert
   std::vector<std::int32_t> degenerate_tet_ids;
+  std::vector<char> is_degenerate;    ///< per tet: 1 when exactly flat (the ids above as flags)
   std::int64_t isolated_vertices = 0;
   std::int64_t folded_faces = 0;      ///< interior faces with both tets on one side
 
