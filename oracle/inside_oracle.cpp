@@ -1,7 +1,9 @@
 #include "oracle/inside_oracle.hpp"
+#include "oracle/tet_inside.hpp"
 #include "oracle/tunneling.hpp"
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -11,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <memory>
 
@@ -27,6 +30,25 @@ struct SurfaceQuery {
   Mesh mesh;
   std::unique_ptr<Tree> tree;
 };
+
+// Distances to a surface that need not be closed (a triangle soup).
+using SoupTriangles = std::vector<K::Triangle_3>;
+using SoupPrimitive = CGAL::AABB_triangle_primitive<K, SoupTriangles::const_iterator>;
+using SoupTree = CGAL::AABB_tree<CGAL::AABB_traits<K, SoupPrimitive>>;
+
+struct SoupQuery {
+  SoupTriangles triangles;
+  std::unique_ptr<SoupTree> tree;
+};
+
+std::unique_ptr<SoupQuery> soup_of(const Body& body) {
+  auto q = std::make_unique<SoupQuery>();
+  const auto point = [&](std::int32_t v) { return Point(body.x_m[v].x(), body.x_m[v].y(), body.x_m[v].z()); };
+  for (const Triangle& f : body.mesh->surface) q->triangles.emplace_back(point(f[0]), point(f[1]), point(f[2]));
+  q->tree = std::make_unique<SoupTree>(q->triangles.cbegin(), q->triangles.cend());
+  q->tree->accelerate_distance_queries();
+  return q;
+}
 
 // B's boundary surface at its current positions; nullptr when not closed.
 std::unique_ptr<SurfaceQuery> surface_of(const Body& body) {
@@ -46,42 +68,32 @@ std::unique_ptr<SurfaceQuery> surface_of(const Body& body) {
 
 }  // namespace
 
-namespace {
-
-// (a, b) pairs with a's centre strictly inside b; `open` collects bodies
-// whose surface cannot be judged.
-std::vector<std::pair<std::size_t, std::size_t>> centres_inside(const World& world, std::vector<std::string>& open) {
-  std::vector<std::pair<std::size_t, std::size_t>> pairs;
+BodyPairs centres_inside_pairs(const World& world) {
+  BodyPairs pairs;
   for (std::size_t b = 0; b < world.bodies.size(); ++b) {
-    const auto surface = surface_of(world.bodies[b]);
-    if (!surface) {
-      open.push_back("'" + world.bodies[b].name + "': surface not closed, tunnelling undefined");
-      continue;
-    }
-    const CGAL::Side_of_triangle_mesh<Mesh, K> side(*surface->tree);
+    std::vector<std::size_t> others;
+    std::vector<Vec3> centres;
     for (std::size_t a = 0; a < world.bodies.size(); ++a) {
-      if (a == b) continue;
-      const Vec3 c = centre_of_mass_m(world.bodies[a]);
-      if (side(Point(c.x(), c.y(), c.z())) == CGAL::ON_BOUNDED_SIDE) pairs.emplace_back(std::min(a, b), std::max(a, b));
+      if (a == b || (world.bodies[a].passive && world.bodies[b].passive)) continue;
+      others.push_back(a);
+      centres.push_back(centre_of_mass_m(world.bodies[a]));
     }
+    if (others.empty()) continue;
+    std::vector<bool> inside(others.size(), false);
+    if (const auto surface = surface_of(world.bodies[b])) {
+      const CGAL::Side_of_triangle_mesh<Mesh, K> side(*surface->tree);
+      for (std::size_t i = 0; i < others.size(); ++i)
+        inside[i] = side(Point(centres[i].x(), centres[i].y(), centres[i].z())) == CGAL::ON_BOUNDED_SIDE;
+    } else {
+      const std::vector<TetSide> sides = classify_points_in_tets(world.bodies[b], centres);
+      for (std::size_t i = 0; i < others.size(); ++i) inside[i] = sides[i] == TetSide::Inside;
+    }
+    for (std::size_t i = 0; i < others.size(); ++i)
+      if (inside[i]) pairs.emplace_back(std::min(others[i], b), std::max(others[i], b));
   }
   std::sort(pairs.begin(), pairs.end());
   pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
   return pairs;
-}
-
-}  // namespace
-
-BodyPairs interlocked_pairs(const World& world) {
-  std::vector<std::string> ignored;
-  return centres_inside(world, ignored);
-}
-
-TunnelingResult count_tunneling(const BodyPairs& before, const World& final_world) {
-  TunnelingResult r;
-  for (const auto& pair : centres_inside(final_world, r.unmeasured))
-    if (!std::binary_search(before.begin(), before.end(), pair)) ++r.pairs;
-  return r;
 }
 
 OracleFrame compute_inside_oracle(const World& world) {
@@ -90,47 +102,76 @@ OracleFrame compute_inside_oracle(const World& world) {
   const auto enabled = [&](std::size_t a, std::size_t b) {
     return a != b && !(world.bodies[a].passive && world.bodies[b].passive);
   };
-  // Per vertex of each body: the best classification found so far.
+  // Per vertex of each body: the body it is inside (the smallest index wins),
+  // whether it lies on some body's boundary, and its true depth.
   std::vector<std::vector<std::int32_t>> inside_of(n), on_boundary(n);
   std::vector<std::vector<double>> depth(n);
   for (std::size_t a = 0; a < n; ++a) {
     inside_of[a].assign(world.bodies[a].x_m.size(), -1);
     on_boundary[a].assign(world.bodies[a].x_m.size(), 0);
     depth[a].assign(world.bodies[a].x_m.size(), 0.0);
-    if (world.bodies[a].self_collision && !world.bodies[a].passive)
-      frame.unmeasured.push_back("self-collision of '" + world.bodies[a].name + "' (not measured by the oracle yet)");
   }
+  const auto mark = [&](std::size_t a, std::size_t v, std::size_t b, const auto& distance_to_b) {
+    const auto bi = static_cast<std::int32_t>(b);
+    if (inside_of[a][v] >= 0 && inside_of[a][v] < bi) return;
+    inside_of[a][v] = bi;
+    depth[a][v] = distance_to_b();
+  };
   for (std::size_t b = 0; b < n; ++b) {
+    const Body& B = world.bodies[b];
     bool partner = false;
     for (std::size_t a = 0; a < n; ++a) partner |= enabled(a, b);
-    if (!partner) continue;
-    const auto surface = surface_of(world.bodies[b]);
-    if (!surface) {
-      frame.unmeasured.push_back("'" + world.bodies[b].name + "': surface not closed, inside test undefined");
-      continue;
-    }
-    const CGAL::Side_of_triangle_mesh<Mesh, K> side(*surface->tree);
-    for (std::size_t a = 0; a < n; ++a) {
-      if (!enabled(a, b)) continue;
-      const Body& A = world.bodies[a];
-      for (std::size_t v = 0; v < A.x_m.size(); ++v) {
-        if (inside_of[a][v] >= 0) continue;  // already inside a body with a smaller index
-        const Point p(A.x_m[v].x(), A.x_m[v].y(), A.x_m[v].z());
-        const CGAL::Bounded_side s = side(p);
-        if (s == CGAL::ON_BOUNDED_SIDE) {
-          inside_of[a][v] = static_cast<std::int32_t>(b);
-          depth[a][v] = std::sqrt(CGAL::to_double(surface->tree->squared_distance(p)));
-        } else if (s == CGAL::ON_BOUNDARY) {
-          on_boundary[a][v] = 1;
+    if (partner) {
+      if (const auto surface = surface_of(B)) {
+        const CGAL::Side_of_triangle_mesh<Mesh, K> side(*surface->tree);
+        for (std::size_t a = 0; a < n; ++a) {
+          if (!enabled(a, b)) continue;
+          const Body& A = world.bodies[a];
+          for (std::size_t v = 0; v < A.x_m.size(); ++v) {
+            const Point p(A.x_m[v].x(), A.x_m[v].y(), A.x_m[v].z());
+            const CGAL::Bounded_side s = side(p);
+            if (s == CGAL::ON_BOUNDED_SIDE)
+              mark(a, v, b, [&] { return std::sqrt(CGAL::to_double(surface->tree->squared_distance(p))); });
+            else if (s == CGAL::ON_BOUNDARY)
+              on_boundary[a][v] = 1;
+          }
+        }
+      } else {
+        // An open surface (folds, holes) has no inside: decide by B's tets instead.
+        const auto soup = soup_of(B);
+        for (std::size_t a = 0; a < n; ++a) {
+          if (!enabled(a, b)) continue;
+          const Body& A = world.bodies[a];
+          const std::vector<TetSide> sides = classify_points_in_tets(B, A.x_m);
+          for (std::size_t v = 0; v < A.x_m.size(); ++v) {
+            const Point p(A.x_m[v].x(), A.x_m[v].y(), A.x_m[v].z());
+            if (sides[v] == TetSide::Inside)
+              mark(a, v, b, [&] { return std::sqrt(CGAL::to_double(soup->tree->squared_distance(p))); });
+            else if (sides[v] == TetSide::Boundary)
+              on_boundary[a][v] = 1;
+          }
         }
       }
+    }
+    if (B.self_collision && !B.passive) {
+      const std::vector<TetSide> sides = classify_self_points(B);
+      bool any = false;
+      for (std::size_t v = 0; v < sides.size(); ++v) {
+        if (sides[v] == TetSide::Inside) {
+          mark(b, v, b, [] { return std::numeric_limits<double>::quiet_NaN(); });
+          any = true;
+        } else if (sides[v] == TetSide::Boundary) {
+          on_boundary[b][v] = 1;
+        }
+      }
+      if (any) frame.unmeasured.push_back("true depth of self-collision points of '" + B.name + "' (not defined)");
     }
   }
   for (std::size_t a = 0; a < n; ++a)
     for (std::size_t v = 0; v < inside_of[a].size(); ++v) {
       if (inside_of[a][v] >= 0) {
         frame.inside.push_back({static_cast<std::int32_t>(a), static_cast<std::int32_t>(v), inside_of[a][v], depth[a][v]});
-        frame.max_depth_m = std::max(frame.max_depth_m, depth[a][v]);
+        if (std::isfinite(depth[a][v])) frame.max_depth_m = std::max(frame.max_depth_m, depth[a][v]);
       } else if (on_boundary[a][v]) {
         frame.boundary.emplace_back(static_cast<std::int32_t>(a), static_cast<std::int32_t>(v));
       }

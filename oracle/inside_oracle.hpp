@@ -12,11 +12,16 @@
 /// vertex's true depth is its distance to B's surface (AABB tree,
 /// Epick: inexact constructions, error ~1e-16 relative). A vertex inside
 /// several bodies is reported with the smallest body index.
-/// Limits, reported in `unmeasured` rather than silently skipped: a body whose
-/// surface is not closed (Side_of_triangle_mesh needs a closed, non
-/// self-intersecting surface; dog.mesh's folds open its surface), and
-/// self-collision (not measured by this oracle yet). Self-intersection of a
-/// surface is not checked (CGAL's check costs more than the query).
+/// A body whose surface is not closed (Side_of_triangle_mesh needs a closed,
+/// non self-intersecting surface; dog.mesh's folds open its surface) is
+/// decided by its tets instead (tet_inside.hpp: the same three-valued answer
+/// for a well-formed body, tested), and its depths are distances to its
+/// boundary triangles. Self-collision (bodies with self_collision, not
+/// passive): a vertex inside its own body's tets not incident to it
+/// (tet_inside.hpp); such points have no true depth (NaN, left out of depth
+/// errors and max_depth) and this is said once in `unmeasured`.
+/// Self-intersection of a surface is not checked (CGAL's check costs more
+/// than the query).
 /// Units: metres.
 
 #include <string>
@@ -28,7 +33,7 @@ namespace tcb {
 
 struct OraclePoint {
   std::int32_t object = -1, vertex = -1, other = -1;
-  double depth_m = 0.0;
+  double depth_m = 0.0;  ///< NaN for self-collision points (no true depth defined)
 };
 
 struct OracleFrame {

@@ -32,6 +32,9 @@ class RunCommand final : public Command {
     app->add_option("--oracle", m_oracle,
                     "When the exact oracle runs: off, every, or every:K (its time is oracle_ms, never handling)")
         ->capture_default_str();
+    app->add_option("--oracle-volume", m_overlap,
+                    "When the exact overlap volume is computed: off, every or every:K (default: with --oracle; "
+                    "corefinement costs ~30 ms per overlapping pair)");
     app->add_option("--steps", m_steps, "Number of steps (default: the scene's)")->check(CLI::NonNegativeNumber);
     app->add_option("--seed", m_options.seed, "Seed, recorded in run.json")->capture_default_str();
     app->add_option("--set", m_options.overrides, "Override a scene key, e.g. scene.dt=0.002 (repeatable)");
@@ -47,6 +50,7 @@ class RunCommand final : public Command {
     const SceneDesc scene = load_scene_file(path, m_options.overrides);
     if (m_steps >= 0) m_options.steps = m_steps;
     m_options.oracle = parse_oracle_schedule(m_oracle);
+    if (app->count("--oracle-volume")) m_options.overlap = parse_oracle_schedule(m_overlap, "--oracle-volume");
     if (app->count("--budget-ms")) m_options.budget = {BudgetSpec::Kind::WallMs, m_budget_ms};
     if (app->count("--budget-work")) m_options.budget = {BudgetSpec::Kind::Work, static_cast<double>(m_budget_work)};
     m_options.out_dir = m_out.empty() ? std::filesystem::path("results/runs") / (scene.name + "-" + m_options.method)
@@ -54,6 +58,9 @@ class RunCommand final : public Command {
     m_options.command_line = "tcbench run " + m_scene + " --method " + m_options.method;
     if (app->count("--budget-ms")) m_options.command_line += fmt::format(" --budget-ms {}", m_budget_ms);
     if (app->count("--budget-work")) m_options.command_line += fmt::format(" --budget-work {}", m_budget_work);
+    if (app->count("--oracle")) m_options.command_line += " --oracle " + m_oracle;
+    if (app->count("--oracle-volume")) m_options.command_line += " --oracle-volume " + m_overlap;
+    if (m_steps >= 0) m_options.command_line += fmt::format(" --steps {}", m_steps);
     for (const auto& o : m_options.overrides) m_options.command_line += " --set " + o;
     ProgressLine progress(fmt::format("{} [{}]", scene.name, m_options.method), !m_quiet && stderr_is_terminal());
     m_options.on_step = [&](std::int64_t done, std::int64_t total) { progress.update(done, total); };
@@ -73,7 +80,7 @@ class RunCommand final : public Command {
  private:
   std::string m_scene, m_out;
   std::int64_t m_steps = -1;
-  std::string m_oracle = "off";
+  std::string m_oracle = "off", m_overlap;
   double m_budget_ms = 0.0;
   std::uint64_t m_budget_work = 0;
   bool m_quiet = false;

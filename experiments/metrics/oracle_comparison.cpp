@@ -24,7 +24,7 @@ OracleComparison compare_with_oracle(const std::vector<Contact>& method, const O
     }
     ++hits;
     ++counted;
-    if (c.depth_source != DepthSource::None) r.depth_errors.push_back(std::abs(c.depth_m - it->second));
+    if (c.depth_source != DepthSource::None && std::isfinite(it->second)) r.depth_errors.push_back(std::abs(c.depth_m - it->second));
   }
   if (!truth.empty()) r.recall = static_cast<double>(hits) / static_cast<double>(truth.size());
   if (counted > 0) r.precision = static_cast<double>(hits) / static_cast<double>(counted);

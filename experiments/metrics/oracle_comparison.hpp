@@ -8,7 +8,8 @@
 /// it counts as neither missed nor false (it is left out of both ratios).
 ///   recall    = |M n O| / |O|               (null when O is empty)
 ///   precision = |M n O| / |M \ B|           (null when M \ B is empty)
-///   depth error = |d_method - d_true| over points in M n O that have a depth.
+///   depth error = |d_method - d_true| over points in M n O that have a depth
+///   on both sides (self-collision points have no true depth: NaN, left out).
 
 #include <optional>
 #include <vector>

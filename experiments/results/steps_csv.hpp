@@ -1,6 +1,6 @@
 #pragma once
 /// steps.csv: one row per simulation step, the columns of CONTRACT.md plus
-/// tcbench's own (dynamics_ms, max_speed, solver_iterations). A value that was
+/// tcbench's own (triangle_pairs, dynamics_ms, max_speed, solver_iterations). A value that was
 /// not measured this step (no handler, oracle off) is an empty cell, never 0.
 /// Written to steps.csv.tmp as the run goes and renamed by commit(), so an
 /// interrupted run never leaves a steps.csv that looks complete.
@@ -20,7 +20,7 @@ struct StepRow {
   double time_s = 0.0;
   std::optional<double> handling_ms, budget_ms;
   std::optional<std::int64_t> work_units, cycle, cycle_done, colliding_points, exact_forces, estimated_forces;
-  std::optional<std::int64_t> oracle_points;
+  std::optional<std::int64_t> oracle_points, triangle_pairs;
   std::optional<double> recall, precision, depth_err_mean, depth_err_max, max_depth, overlap_volume, oracle_ms;
   double kinetic_energy = 0.0;
   double dynamics_ms = 0.0;

@@ -12,6 +12,8 @@
 #include "experiments/metrics/distribution.hpp"
 #include "experiments/metrics/jitter.hpp"
 #include "experiments/metrics/latency.hpp"
+#include "oracle/overlap_volume.hpp"
+#include "oracle/triangle_pairs.hpp"
 #include "oracle/tunneling.hpp"
 #include "experiments/metrics/oracle_comparison.hpp"
 #include "method/detection/spatial_hash.hpp"
@@ -71,7 +73,7 @@ Json scene_json(const SceneDesc& scene, const World& world) {
 
 }  // namespace
 
-OracleSchedule parse_oracle_schedule(const std::string& text) {
+OracleSchedule parse_oracle_schedule(const std::string& text, const std::string& option) {
   if (text == "off") return {0};
   if (text == "every") return {1};
   if (text.rfind("every:", 0) == 0) {
@@ -82,7 +84,7 @@ OracleSchedule parse_oracle_schedule(const std::string& text) {
     } catch (const std::exception&) {
     }
   }
-  throw InputError("--oracle", 0, "expected off, every or every:K with K >= 1, not '" + text + "'");
+  throw InputError(option, 0, "expected off, every or every:K with K >= 1, not '" + text + "'");
 }
 
 std::vector<std::pair<std::string, std::string>> available_methods() {
@@ -98,7 +100,10 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
   // Everything that can fail on bad input happens before the directory exists.
   std::unique_ptr<CollisionHandler> handler = make_handler(options.method, scene);
   World world = build_world(scene);
-  const BodyPairs initially_interlocked = interlocked_pairs(world);  // not tunnelling when they end so
+  const OracleSchedule overlap_schedule = options.overlap.value_or(options.oracle);
+  TunnelingMeter tunneling(world);  // pairs interlocked at the start are not tunnelling when they end so
+  std::unique_ptr<SurfaceTrianglePairs> triangle_pairs;
+  if (options.oracle.every > 0) triangle_pairs = std::make_unique<SurfaceTrianglePairs>(world);
   handler->init(world, scene);  // not timed
   JitterMeter jitter;
   LatencyMeter latency(world);
@@ -112,7 +117,8 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
   StepsCsv csv(options.out_dir / "steps.csv");
   std::vector<double> dynamics_ms, handling_ms, overshoot_pct, oracle_ms, recalls, precisions, depth_errors;
   double max_depth = 0.0;
-  std::int64_t oracle_steps = 0;
+  std::optional<double> overlap_max;
+  std::int64_t oracle_steps = 0, overlap_steps = 0, overlap_invalid_steps = 0;
   std::set<std::string> unmeasured;
   std::vector<double> solver_iterations, cycle_lengths;
   std::int64_t cycle_start_step = 1, depth_fallback_total = 0, colliding_max = 0;
@@ -151,14 +157,14 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
       const OracleFrame frame = compute_inside_oracle(world);
       latency.record_oracle(world.step_index + 1, frame);
       const OracleComparison cmp = compare_with_oracle(handler->contacts(), frame);
-      row.oracle_ms = ms_since(t_oracle);
       row.oracle_points = cmp.oracle_points;
       row.recall = cmp.recall;
       row.precision = cmp.precision;
       row.depth_err_mean = cmp.depth_err_mean;
       row.depth_err_max = cmp.depth_err_max;
       row.max_depth = cmp.max_depth_m;
-      oracle_ms.push_back(*row.oracle_ms);
+      row.triangle_pairs = static_cast<std::int64_t>(triangle_pairs->find(world).size());
+      row.oracle_ms = ms_since(t_oracle);
       if (cmp.recall) recalls.push_back(*cmp.recall);
       if (cmp.precision) precisions.push_back(*cmp.precision);
       depth_errors.insert(depth_errors.end(), cmp.depth_errors.begin(), cmp.depth_errors.end());
@@ -166,6 +172,21 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
       unmeasured.insert(frame.unmeasured.begin(), frame.unmeasured.end());
       ++oracle_steps;
     }
+    if (overlap_schedule.due(world.step_index + 1)) {
+      const auto t_overlap = Clock::now();
+      const OverlapFrame overlap = compute_overlap_volumes(world);
+      tunneling.record_overlaps(overlap);
+      ++overlap_steps;
+      if (overlap.invalid.empty()) {
+        row.overlap_volume = overlap.total_m3;
+        overlap_max = std::max(overlap_max.value_or(0.0), overlap.total_m3);
+      } else {
+        ++overlap_invalid_steps;  // no value this step: never a silent 0
+        unmeasured.insert(overlap.invalid.begin(), overlap.invalid.end());
+      }
+      row.oracle_ms = row.oracle_ms.value_or(0.0) + ms_since(t_overlap);
+    }
+    if (row.oracle_ms) oracle_ms.push_back(*row.oracle_ms);
     if (options.oracle.every > 0) latency.record_forces(world.step_index + 1, report.exact_points);
     const auto t0 = Clock::now();
     world.step(scene.dt_s);
@@ -255,9 +276,9 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
   summary["oracle_ms"] = distribution_json(oracle_ms);
   summary["jitter"] = scene.jitter_measure.empty() || jitter.samples() == 0 ? Json(nullptr) : Json(jitter.rms_m_per_s());
   if (std::isfinite(world.max_speed_m_per_s())) {
-    const TunnelingResult tunneling = count_tunneling(initially_interlocked, world);
-    summary["tunneling"] = tunneling.pairs;
-    unmeasured.insert(tunneling.unmeasured.begin(), tunneling.unmeasured.end());
+    const TunnelingResult tunnelled = tunneling.finish(world);
+    summary["tunneling"] = tunnelled.pairs;
+    unmeasured.insert(tunnelled.unmeasured.begin(), tunnelled.unmeasured.end());
   } else {
     summary["tunneling"] = nullptr;  // positions are not finite: nothing to judge
     unmeasured.insert("tunnelling: the final state is not finite");
@@ -272,7 +293,9 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
                                    : Json{{"mean", l.mean}, {"p95", l.p95}, {"max", l.max}};
     summary["unserved_penetrations"] = latency.unserved();
   }
-  summary["overlap_volume_max"] = nullptr;  // not built yet (oracle issue)
+  summary["overlap_volume_max"] = overlap_max ? Json(*overlap_max) : Json(nullptr);
+  summary["overlap_steps"] = overlap_steps;
+  summary["overlap_invalid_steps"] = overlap_invalid_steps;
   summary["nan_steps"] = nan_steps;
   summary["work_units_total"] = work_total;
   summary["colliding_points_max"] = colliding_max;
@@ -299,7 +322,11 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
   run["steps_requested"] = steps_total;
   run["dt"] = scene.dt_s;
   run["seed"] = options.seed;
-  run["oracle"] = options.oracle.every == 0 ? Json("off") : Json("every:" + std::to_string(options.oracle.every));
+  const auto schedule_json = [](const OracleSchedule& o) {
+    return o.every == 0 ? Json("off") : Json("every:" + std::to_string(o.every));
+  };
+  run["oracle"] = schedule_json(options.oracle);
+  run["oracle_volume"] = schedule_json(overlap_schedule);
   run["overrides"] = options.overrides;
   run["command"] = options.command_line;
   run["build"] = build_info();

@@ -31,13 +31,16 @@ struct OracleSchedule {
   bool due(std::int64_t step) const { return every > 0 && step % every == 0; }
 };
 
-/// Parses "off", "every" or "every:K"; InputError otherwise.
-OracleSchedule parse_oracle_schedule(const std::string& text);
+/// Parses "off", "every" or "every:K"; InputError naming `option` otherwise.
+OracleSchedule parse_oracle_schedule(const std::string& text, const std::string& option = "--oracle");
 
 struct RunOptions {
   std::string method = "full";
   BudgetSpec budget;
   OracleSchedule oracle;
+  /// When the exact overlap volume is computed (corefinement, ~30 ms per
+  /// overlapping pair: far dearer than the inside sets); unset: with the oracle.
+  std::optional<OracleSchedule> overlap;
   std::optional<std::int64_t> steps;  ///< overrides the scene's step count
   std::uint64_t seed = 0;
   std::filesystem::path out_dir;

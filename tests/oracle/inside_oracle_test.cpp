@@ -3,10 +3,15 @@
 
 #include <catch2/catch.hpp>
 
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+
+#include <cmath>
 #include <map>
+#include <tuple>
 
 #include "baselines/registry.hpp"
 #include "experiments/metrics/oracle_comparison.hpp"
+#include "experiments/scene/scene_file.hpp"
 #include "tests/method/test_worlds.hpp"
 
 using namespace tcb;
@@ -50,14 +55,6 @@ TEST_CASE("oracle: a small box wholly inside a large one is found (FCL would see
   CHECK(small_inside == 27);
 }
 
-TEST_CASE("oracle: what it cannot decide is reported, not skipped", "[oracle]") {
-  const SceneDesc scene = test::scene_of({{"self", "box:size=0.2x0.2x0.2,cells=2x2x2", Vec3::Zero(), false, true},
-                                          {"other", "box:size=0.2x0.2x0.2,cells=2x2x2", Vec3(0.05, 0.05, 0.05)}});
-  const OracleFrame frame = compute_inside_oracle(build_world(scene));
-  REQUIRE(frame.unmeasured.size() == 1);
-  CHECK_THAT(frame.unmeasured[0], Catch::Matchers::Contains("self-collision"));
-}
-
 TEST_CASE("comparison: on-boundary points are neither missed nor false", "[oracle]") {
   OracleFrame oracle;
   oracle.inside = {{0, 1, 1, 0.01}, {0, 2, 1, 0.02}};
@@ -74,35 +71,101 @@ TEST_CASE("comparison: on-boundary points are neither missed nor false", "[oracl
   CHECK_FALSE(compare_with_oracle({}, OracleFrame{}).recall.has_value());
 }
 
+namespace {
+
+struct OracleRun {
+  int compared = 0;  ///< oracle frames where recall was defined
+  double worst_depth_error_m = 0.0;
+  std::int64_t method_points = 0, oracle_points = 0;
+};
+
+// Runs `full` for `steps` steps with the oracle every `every` steps; every
+// defined recall and precision must be exactly 1.
+OracleRun full_against_oracle(const SceneDesc& scene, int steps, int every) {
+  World world = build_world(scene);
+  auto full = make_handler("full", scene);
+  full->init(world, scene);
+  OracleRun run;
+  for (int s = 1; s <= steps; ++s) {
+    Budget unlimited = Budget::unlimited();
+    full->step(world, unlimited);
+    if (s % every == 0) {
+      const OracleComparison c = compare_with_oracle(full->contacts(), compute_inside_oracle(world));
+      INFO("step " << s);
+      if (c.recall) REQUIRE(*c.recall == 1.0);
+      if (c.precision) REQUIRE(*c.precision == 1.0);
+      if (c.depth_err_max) run.worst_depth_error_m = std::max(run.worst_depth_error_m, *c.depth_err_max);
+      run.compared += c.recall.has_value();
+      run.method_points += static_cast<std::int64_t>(full->contacts().size());
+      run.oracle_points += c.oracle_points;
+    }
+    world.step(scene.dt_s);
+    REQUIRE(std::isfinite(world.max_speed_m_per_s()));
+  }
+  return run;
+}
+
+}  // namespace
+
 TEST_CASE("full reaches recall 1 and precision 1 against the oracle", "[oracle]") {
   const std::string data = TCBENCH_DATA_DIR;
-  const std::vector<std::pair<std::string, SceneDesc>> scenes = {
+  SceneDesc dogs = test::scene_of({{"dog", std::string(TCBENCH_SHARED_MESHES) + "/dog.mesh", Vec3::Zero(), false,
+                                    false, 0.01},
+                                   {"dog2", std::string(TCBENCH_SHARED_MESHES) + "/dog.mesh", Vec3(0.05, 0.4, 0.1),
+                                    false, false, 0.01}});
+  const std::vector<std::tuple<std::string, SceneDesc, int, int>> scenes = {
       {"plate stack", test::scene_of({{"plate", "box:size=0.3x0.02x0.3,cells=4x2x4", Vec3(0, 0.01, 0), false, false,
-                                       1.0, 4}})},
+                                       1.0, 4}}), 20, 1},
       {"sphere into torus", test::scene_of({{"torus", "meshes/torus_coarse.mesh"},
                                             {"sphere", "meshes/sphere_fine.mesh", Vec3(0.1, 0.02, 0.0), false, false,
                                              0.5}},
-                                           data)},
+                                           data), 20, 1},
       {"two boxes", test::scene_of({{"a", "box:size=0.2x0.2x0.2,cells=3x3x3"},
-                                    {"b", "box:size=0.2x0.2x0.2,cells=4x2x3", Vec3(0.07, 0.05, 0.03)}})},
+                                    {"b", "box:size=0.2x0.2x0.2,cells=4x2x3", Vec3(0.07, 0.05, 0.03)}}), 20, 1},
+      {"plates20", load_scene_file(resolve_scene("plates20", default_scene_dirs())), 300, 15},
+      {"two dogs (open surfaces: decided by tets)", dogs, 6, 1},
   };
-  for (const auto& [name, scene] : scenes) {
-    World world = build_world(scene);
-    auto full = make_handler("full", scene);
-    full->init(world, scene);
-    double worst_depth_error = 0.0;
-    int compared = 0;
-    for (int s = 0; s < 20; ++s) {
-      Budget unlimited = Budget::unlimited();
-      full->step(world, unlimited);
-      const OracleComparison c = compare_with_oracle(full->contacts(), compute_inside_oracle(world));
-      if (c.recall) REQUIRE(*c.recall == 1.0);
-      if (c.precision) REQUIRE(*c.precision == 1.0);
-      if (c.depth_err_max) worst_depth_error = std::max(worst_depth_error, *c.depth_err_max);
-      compared += c.recall.has_value();
-      world.step(scene.dt_s);
-    }
-    CHECK(compared > 0);
-    WARN(name << ": full against the oracle, largest depth error " << worst_depth_error << " m over 20 steps");
+  for (const auto& [name, scene, steps, every] : scenes) {
+    INFO(name);
+    const OracleRun run = full_against_oracle(scene, steps, every);
+    CHECK(run.compared > 0);
+    WARN(name << ": full against the oracle on " << run.compared << " frames, " << run.oracle_points
+              << " inside points, largest depth error " << run.worst_depth_error_m << " m");
   }
+}
+
+TEST_CASE("cube_drop has no object pairs: the oracle and full both find nothing", "[oracle]") {
+  const OracleRun run = full_against_oracle(load_scene_file(resolve_scene("cube_drop", default_scene_dirs())), 400, 20);
+  CHECK(run.compared == 0);
+  CHECK(run.oracle_points == 0);
+  CHECK(run.method_points == 0);
+}
+
+TEST_CASE("true depth: the AABB tree (inexact constructions) against the exact kernel", "[oracle]") {
+  const SceneDesc scene = test::scene_of(
+      {{"torus", "meshes/torus_coarse.mesh"}, {"sphere", "meshes/sphere_fine.mesh", Vec3(0.1, 0.02, 0.0), false, false, 0.5}},
+      TCBENCH_DATA_DIR);
+  const World world = build_world(scene);
+  const OracleFrame frame = compute_inside_oracle(world);
+  using E = CGAL::Exact_predicates_exact_constructions_kernel;
+  int checked = 0;
+  double worst = 0.0;
+  for (const OraclePoint& p : frame.inside) {
+    if (p.object != 1 || checked >= 25) continue;
+    const Body& torus = world.bodies[0];
+    const auto point = [](const Vec3& x) { return E::Point_3(x.x(), x.y(), x.z()); };
+    const E::Point_3 q = point(world.bodies[1].x_m[p.vertex]);
+    E::FT best = -1;
+    for (const Triangle& f : torus.mesh->surface) {
+      const E::FT d2 = CGAL::squared_distance(q, E::Triangle_3(point(torus.x_m[f[0]]), point(torus.x_m[f[1]]),
+                                                                point(torus.x_m[f[2]])));
+      if (best < 0 || d2 < best) best = d2;
+    }
+    const double exact = std::sqrt(CGAL::to_double(best));
+    worst = std::max(worst, std::abs(p.depth_m - exact));
+    ++checked;
+  }
+  CHECK(checked == 25);
+  WARN("true depth against the exact kernel: largest difference " << worst << " m over " << checked << " points");
+  CHECK(worst < 1e-14);
 }

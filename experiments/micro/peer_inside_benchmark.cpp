@@ -1,0 +1,236 @@
+// Peer comparison for the oracle issue: the same query, "which vertices of
+// each object lie inside a tet of another object", answered three ways on the
+// same deforming meshes, each rebuilding or refitting what it needs every
+// iteration (one iteration = one simulation step's worth):
+//   BM_Ours:  the method's spatial hash of tets + exact perturbed point-in-tet
+//             (TetHashDetector: hash_tets, then query_point per vertex);
+//   BM_Cgal:  what a CGAL user writes: CGAL::box_intersection_d between point
+//             boxes and tet boxes, then exact orientation predicates (Epick);
+//   BM_Fcl:   what an FCL user writes: DynamicAABBTreeCollisionManager with
+//             every tet a Convex and every vertex a zero-radius Sphere, all
+//             objects updated, manager-manager collide with narrow phase.
+// Scenes: /0 dog.mesh (scaled to 1.34 m) against a copy shifted by half its
+// height (the collision-cycle benchmark's pair); /1 plates20 at the origin.
+// Each iteration first deforms the second object (a small wave, different per
+// iteration) so no method can reuse last step's structure unchanged.
+// Counter `inside`: vertices found inside (boundary conventions differ in the
+// last few points: ours is symbolic, CGAL's closed, FCL's its own tolerance).
+//   build/release/experiments/micro/micro_peer_inside --benchmark_repetitions=3
+#include <benchmark/benchmark.h>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/box_intersection_d.h>
+#include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
+#include <fcl/geometry/shape/convex.h>
+#include <fcl/geometry/shape/sphere.h>
+#include <fcl/narrowphase/collision.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "experiments/scene/scene_file.hpp"
+#include "method/detection/collision_pairs.hpp"
+#include "method/detection/tet_hash_detection.hpp"
+#include "method/handler/collision_settings.hpp"
+#include "sim/mesh/medit_io.hpp"
+
+namespace {
+
+using namespace tcb;
+
+World dog_pair() {
+  TetMesh dog = read_medit(std::filesystem::path(TCBENCH_SHARED_MESHES) / "dog.mesh");
+  for (Vec3& p : dog.positions_m) p *= 0.01;
+  Vec3 lo = dog.positions_m[0], hi = lo;
+  for (const Vec3& p : dog.positions_m) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  const auto mesh = std::make_shared<const TetMesh>(std::move(dog));
+  World world;
+  for (int copy = 0; copy < 2; ++copy) {
+    Body b;
+    b.name = copy ? "dog_b" : "dog_a";
+    b.mesh = mesh;
+    b.x_m = mesh->positions_m;
+    if (copy)
+      for (Vec3& p : b.x_m) p.y() += 0.5 * (hi.y() - lo.y());
+    world.bodies.push_back(std::move(b));
+  }
+  return world;
+}
+
+World scene_world(int which) {
+  if (which == 0) return dog_pair();
+  return build_world(load_scene_file(resolve_scene("plates20", default_scene_dirs())));
+}
+
+// The per-iteration deformation: a wave of 0.1 mm along x on the last body.
+void deform(World& world, const std::vector<Vec3>& rest, std::int64_t iteration) {
+  Body& b = world.bodies.back();
+  const double phase = 0.1 * static_cast<double>(iteration);
+  for (std::size_t v = 0; v < b.x_m.size(); ++v) b.x_m[v] = rest[v] + Vec3(1e-4 * std::sin(10.0 * rest[v].y() + phase), 0, 0);
+}
+
+void BM_Ours(benchmark::State& state) {
+  World world = scene_world(static_cast<int>(state.range(0)));
+  const std::vector<Vec3> rest = world.bodies.back().x_m;
+  const CollisionPairs pairs(world);
+  DetectionSettings settings;
+  settings.cell_size_m = average_edge_length(world);
+  TetHashDetector detector(world, settings);
+  std::int64_t iteration = 0, inside = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    deform(world, rest, iteration++);
+    state.ResumeTiming();
+    std::uint64_t work = detector.hash_tets(world, pairs);
+    inside = 0;
+    for (std::size_t b = 0; b < world.bodies.size(); ++b)
+      for (std::size_t v = 0; v < world.bodies[b].x_m.size(); ++v)
+        inside += detector.query_point(world, pairs, static_cast<std::int32_t>(b), static_cast<std::int32_t>(v), work)
+                      .has_value();
+  }
+  state.counters["inside"] = static_cast<double>(inside);
+}
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::pair<std::int32_t, std::int32_t>>;
+
+void BM_Cgal(benchmark::State& state) {
+  World world = scene_world(static_cast<int>(state.range(0)));
+  const std::vector<Vec3> rest = world.bodies.back().x_m;
+  std::int64_t iteration = 0, inside = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    deform(world, rest, iteration++);
+    state.ResumeTiming();
+    std::vector<Box> points, tets;
+    std::vector<std::vector<K::Point_3>> x(world.bodies.size());
+    for (std::int32_t b = 0; b < static_cast<std::int32_t>(world.bodies.size()); ++b) {
+      const Body& body = world.bodies[b];
+      for (const Vec3& p : body.x_m) x[b].emplace_back(p.x(), p.y(), p.z());
+      for (std::int32_t v = 0; v < static_cast<std::int32_t>(x[b].size()); ++v)
+        points.emplace_back(x[b][v].bbox(), std::make_pair(b, v));
+      for (std::int32_t t = 0; t < static_cast<std::int32_t>(body.mesh->tet_count()); ++t) {
+        const Tet& q = body.mesh->tets[t];
+        tets.emplace_back(x[b][q[0]].bbox() + x[b][q[1]].bbox() + x[b][q[2]].bbox() + x[b][q[3]].bbox(),
+                          std::make_pair(b, t));
+      }
+    }
+    std::vector<std::vector<char>> found(world.bodies.size());
+    for (std::size_t b = 0; b < world.bodies.size(); ++b) found[b].assign(x[b].size(), 0);
+    CGAL::box_intersection_d(points.begin(), points.end(), tets.begin(), tets.end(), [&](const Box& p, const Box& t) {
+      const auto [pb, pv] = p.info();
+      const auto [tb, ti] = t.info();
+      if (pb == tb || found[pb][pv]) return;
+      const Tet& q = world.bodies[tb].mesh->tets[ti];
+      const K::Point_3* c[4] = {&x[tb][q[0]], &x[tb][q[1]], &x[tb][q[2]], &x[tb][q[3]]};
+      const CGAL::Orientation o = CGAL::orientation(*c[0], *c[1], *c[2], *c[3]);
+      if (o == CGAL::COPLANAR) return;
+      const K::Point_3& r = x[pb][pv];
+      if (CGAL::orientation(r, *c[1], *c[2], *c[3]) == -o || CGAL::orientation(*c[0], r, *c[2], *c[3]) == -o ||
+          CGAL::orientation(*c[0], *c[1], r, *c[3]) == -o || CGAL::orientation(*c[0], *c[1], *c[2], r) == -o)
+        return;
+      found[pb][pv] = 1;
+    });
+    inside = 0;
+    for (const auto& f : found) inside += std::count(f.begin(), f.end(), 1);
+  }
+  state.counters["inside"] = static_cast<double>(inside);
+}
+
+struct FclScene {
+  std::vector<std::shared_ptr<std::vector<fcl::Vector3d>>> tet_vertices;
+  std::vector<std::shared_ptr<fcl::Convexd>> tet_shapes;
+  std::vector<std::unique_ptr<fcl::CollisionObjectd>> tet_objects, point_objects;
+  std::vector<std::pair<std::int32_t, std::int32_t>> tet_id, point_id;  // (body, index) per object
+  fcl::DynamicAABBTreeCollisionManagerd tets, points;
+};
+
+void BM_Fcl(benchmark::State& state) {
+  World world = scene_world(static_cast<int>(state.range(0)));
+  const std::vector<Vec3> rest = world.bodies.back().x_m;
+  FclScene s;
+  const auto faces = std::make_shared<std::vector<int>>(std::vector<int>{3, 0, 2, 1, 3, 0, 1, 3, 3, 0, 3, 2, 3, 1, 2, 3});
+  const auto sphere = std::make_shared<fcl::Sphered>(0.0);
+  for (std::int32_t b = 0; b < static_cast<std::int32_t>(world.bodies.size()); ++b) {
+    const Body& body = world.bodies[b];
+    for (std::int32_t t = 0; t < static_cast<std::int32_t>(body.mesh->tet_count()); ++t) {
+      const Tet& q = body.mesh->tets[t];
+      auto vertices = std::make_shared<std::vector<fcl::Vector3d>>();
+      for (int k = 0; k < 4; ++k) vertices->push_back(body.x_m[q[k]]);
+      auto shape = std::make_shared<fcl::Convexd>(vertices, 4, faces);
+      s.tet_vertices.push_back(vertices);
+      s.tet_shapes.push_back(shape);
+      s.tet_objects.push_back(std::make_unique<fcl::CollisionObjectd>(shape));
+      s.tet_id.emplace_back(b, t);
+    }
+    for (std::int32_t v = 0; v < static_cast<std::int32_t>(body.x_m.size()); ++v) {
+      fcl::Transform3d at = fcl::Transform3d::Identity();
+      at.translation() = body.x_m[v];
+      s.point_objects.push_back(std::make_unique<fcl::CollisionObjectd>(sphere, at));
+      s.point_id.emplace_back(b, v);
+    }
+  }
+  for (std::size_t i = 0; i < s.tet_objects.size(); ++i) s.tet_objects[i]->setUserData(&s.tet_id[i]);
+  for (std::size_t i = 0; i < s.point_objects.size(); ++i) s.point_objects[i]->setUserData(&s.point_id[i]);
+  std::vector<fcl::CollisionObjectd*> raw;
+  for (auto& o : s.tet_objects) raw.push_back(o.get());
+  s.tets.registerObjects(raw);
+  raw.clear();
+  for (auto& o : s.point_objects) raw.push_back(o.get());
+  s.points.registerObjects(raw);
+  s.tets.setup();
+  s.points.setup();
+
+  struct Data {
+    std::vector<std::vector<char>>* found;
+  };
+  std::vector<std::vector<char>> found(world.bodies.size());
+  std::int64_t iteration = 0, inside = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    deform(world, rest, iteration++);
+    state.ResumeTiming();
+    // Update every object to the current positions, as a deforming scene must.
+    for (std::size_t i = 0; i < s.tet_objects.size(); ++i) {
+      const auto [b, t] = s.tet_id[i];
+      const Tet& q = world.bodies[b].mesh->tets[t];
+      for (int k = 0; k < 4; ++k) (*s.tet_vertices[i])[k] = world.bodies[b].x_m[q[k]];
+      s.tet_shapes[i]->computeLocalAABB();
+      s.tet_objects[i]->computeAABB();
+    }
+    for (std::size_t i = 0; i < s.point_objects.size(); ++i) {
+      const auto [b, v] = s.point_id[i];
+      s.point_objects[i]->setTranslation(world.bodies[b].x_m[v]);
+      s.point_objects[i]->computeAABB();
+    }
+    s.tets.update();
+    s.points.update();
+    for (std::size_t b = 0; b < world.bodies.size(); ++b) found[b].assign(world.bodies[b].x_m.size(), 0);
+    Data data{&found};
+    s.tets.collide(&s.points, &data, [](fcl::CollisionObjectd* o1, fcl::CollisionObjectd* o2, void* raw_data) {
+      auto* d = static_cast<Data*>(raw_data);
+      const auto* a = static_cast<const std::pair<std::int32_t, std::int32_t>*>(o1->getUserData());
+      const auto* p = static_cast<const std::pair<std::int32_t, std::int32_t>*>(o2->getUserData());
+      if (o2->collisionGeometry()->getNodeType() != fcl::GEOM_SPHERE) {  // the managers' order is not promised
+        std::swap(a, p);
+        std::swap(o1, o2);
+      }
+      if (a->first == p->first || (*d->found)[p->first][p->second]) return false;
+      fcl::CollisionRequestd request;
+      fcl::CollisionResultd result;
+      if (fcl::collide(o1, o2, request, result) > 0) (*d->found)[p->first][p->second] = 1;
+      return false;  // keep going
+    });
+    inside = 0;
+    for (const auto& f : found) inside += std::count(f.begin(), f.end(), 1);
+  }
+  state.counters["inside"] = static_cast<double>(inside);
+}
+
+BENCHMARK(BM_Ours)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Cgal)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Fcl)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(3);
+
+}  // namespace
+
+BENCHMARK_MAIN();
