@@ -23,6 +23,7 @@ struct MethodInfo {
   /// values throw InputError naming where they were written).
   std::function<std::unique_ptr<CollisionHandler>(const std::map<std::string, MethodSetting>&)> make;
   bool detects = true;  ///< false for `none`: it is exempt from the cross-method test
+  bool uses_budget = false;  ///< true when a budget changes what it does (sweeps run the others once)
 };
 
 const std::vector<MethodInfo>& method_registry();

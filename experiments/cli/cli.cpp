@@ -17,6 +17,8 @@ int run_cli(int argc, const char* const* argv) {
   app.require_subcommand(1);
   std::vector<std::unique_ptr<cli::Command>> commands;
   commands.push_back(cli::make_run_command(app));
+  commands.push_back(cli::make_sweep_command(app));
+  commands.push_back(cli::make_check_command(app));
   commands.push_back(cli::make_reproduce_command(app));
   commands.push_back(cli::make_list_command(app));
   commands.push_back(cli::make_mesh_command(app));

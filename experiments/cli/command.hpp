@@ -19,5 +19,7 @@ std::unique_ptr<Command> make_run_command(CLI::App& parent);
 std::unique_ptr<Command> make_list_command(CLI::App& parent);
 std::unique_ptr<Command> make_mesh_command(CLI::App& parent);
 std::unique_ptr<Command> make_reproduce_command(CLI::App& parent);
+std::unique_ptr<Command> make_sweep_command(CLI::App& parent);
+std::unique_ptr<Command> make_check_command(CLI::App& parent);
 
 }  // namespace tcb::cli

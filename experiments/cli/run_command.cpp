@@ -35,6 +35,8 @@ class RunCommand final : public Command {
     app->add_option("--oracle-volume", m_overlap,
                     "When the exact overlap volume is computed: off, every or every:K (default: with --oracle; "
                     "corefinement costs ~30 ms per overlapping pair)");
+    app->add_option("--budget-label", m_options.budget_label,
+                    "How the budget was asked for, recorded in run.json (sweeps pass e.g. full/3)");
     app->add_option("--steps", m_steps, "Number of steps (default: the scene's)")->check(CLI::NonNegativeNumber);
     app->add_option("--seed", m_options.seed, "Seed, recorded in run.json")->capture_default_str();
     app->add_option("--set", m_options.overrides, "Override a scene key, e.g. scene.dt=0.002 (repeatable)");

@@ -31,12 +31,18 @@ struct OracleSchedule {
   bool due(std::int64_t step) const { return every > 0 && step % every == 0; }
 };
 
+/// "none", "ms:X" or "work:N": the absolute form of a budget, as sweeps and checks name it.
+std::string budget_label(const BudgetSpec& budget);
+
 /// Parses "off", "every" or "every:K"; InputError naming `option` otherwise.
 OracleSchedule parse_oracle_schedule(const std::string& text, const std::string& option = "--oracle");
 
 struct RunOptions {
   std::string method = "full";
   BudgetSpec budget;
+  /// How the budget was asked for, recorded in run.json (e.g. "full/3" when a
+  /// sweep derived the absolute value from full's cost); empty: the absolute form.
+  std::string budget_label;
   OracleSchedule oracle;
   /// When the exact overlap volume is computed (corefinement, ~30 ms per
   /// overlapping pair: far dearer than the inside sets); unset: with the oracle.

@@ -11,6 +11,7 @@
 
 #include "baselines/registry.hpp"
 #include "sim/io/atomic_file.hpp"
+#include "experiments/scene/toml_table_reader.hpp"
 #include "sim/io/input_error.hpp"
 
 #ifndef TCBENCH_SOURCE_DIR
@@ -19,123 +20,6 @@
 
 namespace tcb {
 namespace {
-
-// Where a node came from: the scene file, or the --set override that made it.
-// toml++ does not copy source regions with nodes, so the nodes that overrides
-// inserted are remembered here.
-struct Where {
-  std::string file;
-  int line;
-};
-
-struct Origins {
-  std::string file;
-  std::map<const toml::node*, std::string> overridden;  // node -> "--set key=value"
-};
-
-Where where_of(const toml::node& node, const Origins& origins) {
-  if (auto it = origins.overridden.find(&node); it != origins.overridden.end()) return {it->second, 0};
-  return {origins.file, static_cast<int>(node.source().begin.line)};
-}
-
-// Reads the keys of one table with type and range checks, remembering which
-// keys it used so finish() can reject the rest as unknown.
-class TableReader {
- public:
-  TableReader(const toml::table& table, std::string context, const Origins& file)
-      : m_table(table), m_context(std::move(context)), m_file(file) {}
-
-  const toml::node* node(std::string_view key) {
-    m_known.insert(std::string(key));
-    return m_table.get(key);
-  }
-
-  [[noreturn]] void fail(std::string_view key, const std::string& problem) const {
-    const toml::node* n = m_table.get(key);
-    const Where w = n ? where_of(*n, m_file) : where_of(m_table, m_file);
-    throw InputError(w.file, w.line, m_context + "." + std::string(key) + ": " + problem);
-  }
-
-  std::optional<double> number(std::string_view key) {
-    const toml::node* n = node(key);
-    if (!n) return std::nullopt;
-    if (!n->is_number()) fail(key, "must be a number");
-    const double v = *n->value<double>();
-    if (!std::isfinite(v)) fail(key, "must be finite");
-    return v;
-  }
-  double positive(std::string_view key, double fallback) {
-    const auto v = number(key);
-    if (v && !(*v > 0.0)) fail(key, "must be positive");
-    return v.value_or(fallback);
-  }
-  double non_negative(std::string_view key, double fallback) {
-    const auto v = number(key);
-    if (v && *v < 0.0) fail(key, "must not be negative");
-    return v.value_or(fallback);
-  }
-  std::optional<std::int64_t> integer(std::string_view key, std::int64_t min_value, std::int64_t max_value) {
-    const toml::node* n = node(key);
-    if (!n) return std::nullopt;
-    if (!n->is_integer()) fail(key, "must be a whole number");
-    const std::int64_t v = *n->value<std::int64_t>();
-    if (v < min_value || v > max_value)
-      fail(key, "must lie in [" + std::to_string(min_value) + ", " + std::to_string(max_value) + "]");
-    return v;
-  }
-  std::optional<bool> boolean(std::string_view key) {
-    const toml::node* n = node(key);
-    if (!n) return std::nullopt;
-    if (!n->is_boolean()) fail(key, "must be true or false");
-    return *n->value<bool>();
-  }
-  std::optional<std::string> string(std::string_view key) {
-    const toml::node* n = node(key);
-    if (!n) return std::nullopt;
-    if (!n->is_string()) fail(key, "must be a string");
-    return *n->value<std::string>();
-  }
-  std::optional<Vec3> vec3(std::string_view key) {
-    const toml::node* n = node(key);
-    if (!n) return std::nullopt;
-    const toml::array* a = n->as_array();
-    if (!a || a->size() != 3) fail(key, "must be an array of three numbers");
-    Vec3 v;
-    for (int k = 0; k < 3; ++k) {
-      if (!(*a)[k].is_number()) fail(key, "must be an array of three numbers");
-      v[k] = *(*a)[k].value<double>();
-      if (!std::isfinite(v[k])) fail(key, "must be finite");
-    }
-    return v;
-  }
-  const toml::table* table(std::string_view key) {
-    const toml::node* n = node(key);
-    if (!n) return nullptr;
-    if (!n->is_table()) fail(key, "must be a table");
-    return n->as_table();
-  }
-  int line_of(std::string_view key) const {
-    const toml::node* n = m_table.get(key);
-    return n ? where_of(*n, m_file).line : where_of(m_table, m_file).line;
-  }
-
-  void finish() const {
-    for (auto&& [key, value] : m_table) {
-      if (m_known.count(std::string(key.str()))) continue;
-      std::string known;
-      for (const auto& k : m_known) known += (known.empty() ? "" : ", ") + k;
-      const Where w = where_of(value, m_file);
-      throw InputError(w.file, w.line,
-                       "unknown key '" + std::string(key.str()) + "' in " + m_context + " (known: " + known + ")");
-    }
-  }
-
- private:
-  const toml::table& m_table;
-  std::string m_context;
-  const Origins& m_file;
-  std::set<std::string> m_known;
-};
 
 Material read_material(TableReader& object, const std::string& context, const Origins& file) {
   Material m;

@@ -1,0 +1,33 @@
+#pragma once
+/// summary.csv: one row per run of a results directory, from each run's
+/// run.json: who ran (scene, method, budget, seed, overrides), how it ended,
+/// and every number of its summary, nested keys joined with '.'
+/// (handling_ms.p50, depth_err.max). A run without a complete run.json has a
+/// row with its status ("failed", "missing") and empty figures. Written
+/// atomically.
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace tcb {
+
+struct SummaryRow {
+  std::string run;                      ///< the run's directory name
+  std::optional<nlohmann::json> record;  ///< run.json, when complete
+  std::string status;                   ///< used when record is empty
+};
+
+/// Reads DIR/run.json when it is complete (parses, has a summary); nullopt otherwise.
+std::optional<nlohmann::json> read_complete_run(const std::filesystem::path& run_dir);
+
+/// The value of a summary metric by dotted name ("handling_ms.p50"); nullopt
+/// when absent or null.
+std::optional<double> summary_metric(const nlohmann::json& run, const std::string& dotted);
+
+void write_summary_csv(const std::filesystem::path& path, const std::vector<SummaryRow>& rows);
+
+}  // namespace tcb

@@ -1,0 +1,183 @@
+#include "experiments/sweep/sweep_plan.hpp"
+
+#include <fmt/format.h>
+
+#include <map>
+
+#include "baselines/registry.hpp"
+#include "experiments/run/run_scene.hpp"
+#include "experiments/scene/scene_file.hpp"
+#include "experiments/scene/toml_table_reader.hpp"
+
+namespace tcb {
+namespace {
+
+std::optional<double> number_after(const std::string& text, std::size_t prefix) {
+  try {
+    std::size_t used = 0;
+    const double v = std::stod(text.substr(prefix), &used);
+    if (used == text.size() - prefix && std::isfinite(v) && v >= 0.0) return v;
+  } catch (const std::exception&) {
+  }
+  return std::nullopt;
+}
+
+std::string id_part(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    if (std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_') out += c;
+    else if (c == '/') out += "_over_";
+    else out += '_';
+  }
+  return out;
+}
+
+}  // namespace
+
+std::optional<SweepBudget> parse_sweep_budget(const std::string& label) {
+  SweepBudget b;
+  b.label = label;
+  std::optional<double> v;
+  if (label == "none") return b;
+  if (label.rfind("ms:", 0) == 0) b.kind = SweepBudget::Kind::Ms, v = number_after(label, 3);
+  else if (label.rfind("work:", 0) == 0) b.kind = SweepBudget::Kind::Work, v = number_after(label, 5);
+  else if (label.rfind("full-work/", 0) == 0) b.kind = SweepBudget::Kind::RelativeWork, v = number_after(label, 10);
+  else if (label.rfind("full/", 0) == 0) b.kind = SweepBudget::Kind::RelativeMs, v = number_after(label, 5);
+  if (!v || (b.relative() && !(*v > 0.0)) || (b.kind == SweepBudget::Kind::Work && *v != std::floor(*v)))
+    return std::nullopt;
+  b.value = *v;
+  return b;
+}
+
+SweepPlan load_sweep_plan(const std::filesystem::path& path) {
+  const toml::table root = parse_toml_file(path);
+  const Origins origins{path.string(), {}};
+  TableReader top(root, "sweep file", origins);
+  const toml::table* table = top.table("sweep");
+  if (!table) throw InputError(path.string(), 1, "missing the [sweep] table");
+  top.finish();
+  TableReader r(*table, "sweep", origins);
+  SweepPlan plan;
+  plan.file = path;
+  plan.description = r.string("description").value_or("");
+  const auto need = [&](std::string_view key) {
+    auto list = r.string_list(key);
+    if (!list || list->empty()) r.fail(key, "must list at least one entry");
+    return *list;
+  };
+  const std::vector<std::string> scenes = need("scenes"), methods = need("methods"), budget_labels = need("budgets");
+  for (const auto& scene : scenes) {
+    try {
+      resolve_scene(scene, default_scene_dirs());
+    } catch (const InputError& e) {
+      r.fail("scenes", e.what());
+    }
+  }
+  std::map<std::string, bool> uses_budget;
+  for (const auto& m : methods) {
+    const auto& registry = method_registry();
+    const auto it = std::find_if(registry.begin(), registry.end(), [&](const MethodInfo& i) { return i.name == m; });
+    if (it == registry.end()) r.fail("methods", "unknown method '" + m + "' (see `tcbench list methods`)");
+    uses_budget[m] = it->uses_budget;
+  }
+  std::vector<SweepBudget> budgets;
+  for (const auto& label : budget_labels) {
+    const auto b = parse_sweep_budget(label);
+    if (!b) r.fail("budgets", "'" + label + "' is not none, ms:X, work:N, full/K or full-work/K");
+    budgets.push_back(*b);
+  }
+  std::vector<std::uint64_t> seeds{0};
+  if (const toml::node* n = r.node("seeds")) {
+    const toml::array* a = n->as_array();
+    if (!a || a->empty()) r.fail("seeds", "must be an array of whole numbers >= 0");
+    seeds.clear();
+    for (const auto& e : *a) {
+      if (!e.is_integer() || *e.value<std::int64_t>() < 0) r.fail("seeds", "must be an array of whole numbers >= 0");
+      seeds.push_back(static_cast<std::uint64_t>(*e.value<std::int64_t>()));
+    }
+  }
+  plan.steps = r.integer("steps", 1, std::int64_t{1} << 40);
+  plan.oracle = r.string("oracle").value_or("off");
+  try {
+    parse_oracle_schedule(plan.oracle);
+  } catch (const InputError& e) {
+    r.fail("oracle", e.what());
+  }
+  plan.oracle_volume = r.string("oracle_volume");
+  if (plan.oracle_volume) {
+    try {
+      parse_oracle_schedule(*plan.oracle_volume, "oracle_volume");
+    } catch (const InputError& e) {
+      r.fail("oracle_volume", e.what());
+    }
+  }
+  std::vector<std::vector<std::string>> sets{{}};
+  if (const toml::node* n = r.node("sets")) {
+    const toml::array* a = n->as_array();
+    if (!a || a->empty()) r.fail("sets", "must be an array of arrays of \"key=value\" strings");
+    sets.clear();
+    for (const auto& e : *a) {
+      const toml::array* inner = e.as_array();
+      if (!inner) r.fail("sets", "must be an array of arrays of \"key=value\" strings");
+      std::vector<std::string> set;
+      for (const auto& s : *inner) {
+        if (!s.is_string()) r.fail("sets", "must be an array of arrays of \"key=value\" strings");
+        set.push_back(*s.value<std::string>());
+      }
+      sets.push_back(set);
+    }
+  }
+  r.finish();
+
+  const bool any_relative =
+      std::any_of(budgets.begin(), budgets.end(), [](const SweepBudget& b) { return b.relative(); });
+  std::map<std::string, std::size_t> seen;
+  for (const auto& scene : scenes)
+    for (std::size_t s = 0; s < sets.size(); ++s)
+      for (const std::uint64_t seed : seeds) {
+        const std::size_t group = plan.groups++;
+        const std::string tail =
+            fmt::format("-s{}", seed) + (sets.size() > 1 ? fmt::format("-v{}", s) : std::string());
+        const auto add = [&](const std::string& method, const SweepBudget& budget, const std::string& reference) {
+          SweepRun run{id_part(scene) + "-" + method + "-" + id_part(budget.label) + tail, scene, method, budget, seed, s,
+                       sets[s], group, reference};
+          if (seen.count(run.id)) return;
+          seen[run.id] = plan.runs.size();
+          plan.runs.push_back(run);
+        };
+        const std::string reference_id = id_part(scene) + "-full-none" + tail;
+        if (any_relative) add("full", SweepBudget{}, "");  // the reference comes first
+        for (const auto& method : methods)
+          for (const auto& budget : budgets) {
+            if (!uses_budget[method]) {
+              add(method, SweepBudget{}, "");
+              continue;
+            }
+            add(method, budget, budget.relative() ? reference_id : "");
+          }
+      }
+  return plan;
+}
+
+std::vector<SweepRun> shard_runs(const SweepPlan& plan, std::size_t index, std::size_t count) {
+  std::vector<SweepRun> out;
+  for (const SweepRun& run : plan.runs)
+    if (run.group % count == index) out.push_back(run);
+  return out;
+}
+
+std::pair<std::size_t, std::size_t> parse_shard(const std::string& text) {
+  const auto slash = text.find('/');
+  try {
+    if (slash != std::string::npos) {
+      std::size_t a = 0, b = 0;
+      const long long i = std::stoll(text.substr(0, slash), &a), n = std::stoll(text.substr(slash + 1), &b);
+      if (a == slash && b == text.size() - slash - 1 && n >= 1 && i >= 0 && i < n)
+        return {static_cast<std::size_t>(i), static_cast<std::size_t>(n)};
+    }
+  } catch (const std::exception&) {
+  }
+  throw InputError("--shard", 0, "expected I/N with 0 <= I < N (e.g. 0/4), not '" + text + "'");
+}
+
+}  // namespace tcb

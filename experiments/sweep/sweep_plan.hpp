@@ -1,0 +1,74 @@
+#pragma once
+/// A sweep file (SWEEP.toml) and the list of runs it expands to.
+///
+///   [sweep]
+///   description = "..."                    # optional
+///   scenes  = ["plates20", "cube_drop"]    # names or paths, as `tcbench run` takes them
+///   methods = ["full", "interruptible"]    # registry names
+///   budgets = ["none", "ms:4.5", "work:20000", "full/3", "full-work/3"]
+///   seeds   = [0]                          # optional, default [0]
+///   steps   = 200                          # optional: every run's length
+///   oracle  = "every:10"                   # optional, default "off"
+///   oracle_volume = "off"                  # optional, default: with the oracle
+///   sets    = [[], ["scene.dt=0.002"]]     # optional variants of --set, default [[]]
+///
+/// Budgets: "none"; absolute "ms:X" (wall clock) or "work:N" (work units);
+/// relative to the scene's full handling cost, measured in the same sweep by a
+/// reference run (method full, budget none, same scene, seed and set):
+/// "full/K" is full's median handling_ms divided by K, "full-work/K" its mean
+/// work units per step divided by K (same on every machine). Methods that
+/// ignore budgets (registry: uses_budget false) run once, with budget none.
+///
+/// Runs are grouped by (scene, set, seed); a group holds its reference run,
+/// so `--shard I/N` hands out whole groups (group index mod N == I, 0-based)
+/// and every run lands in exactly one shard.
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace tcb {
+
+struct SweepBudget {
+  enum class Kind { None, Ms, Work, RelativeMs, RelativeWork } kind = Kind::None;
+  double value = 0.0;  ///< ms, work units, or the divisor K
+  std::string label = "none";  ///< as written: "none", "ms:4.5", "full/3", ...
+  bool relative() const { return kind == Kind::RelativeMs || kind == Kind::RelativeWork; }
+};
+
+/// Parses one budget label; std::nullopt when malformed.
+std::optional<SweepBudget> parse_sweep_budget(const std::string& label);
+
+struct SweepRun {
+  std::string id;  ///< unique, usable as a directory name
+  std::string scene, method;
+  SweepBudget budget;
+  std::uint64_t seed = 0;
+  std::size_t set_index = 0;
+  std::vector<std::string> sets;
+  std::size_t group = 0;        ///< index of its (scene, set, seed) group
+  std::string reference_id;     ///< for relative budgets: the run whose cost they divide
+};
+
+struct SweepPlan {
+  std::filesystem::path file;
+  std::string description;
+  std::optional<std::int64_t> steps;
+  std::string oracle = "off";
+  std::optional<std::string> oracle_volume;
+  std::vector<SweepRun> runs;  ///< references before the runs that need them
+  std::size_t groups = 0;
+};
+
+/// Reads and expands a sweep file; InputError (file:line) for anything wrong,
+/// including unknown scenes and methods, before any run starts.
+SweepPlan load_sweep_plan(const std::filesystem::path& path);
+
+/// The runs of shard `index` of `count` (whole groups, index in [0, count)).
+std::vector<SweepRun> shard_runs(const SweepPlan& plan, std::size_t index, std::size_t count);
+
+/// Parses "I/N" with 0 <= I < N; InputError naming --shard otherwise.
+std::pair<std::size_t, std::size_t> parse_shard(const std::string& text);
+
+}  // namespace tcb

@@ -1,0 +1,166 @@
+#include "experiments/sweep/sweep_runner.hpp"
+
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <deque>
+#include <map>
+#include <stdexcept>
+
+#include "experiments/results/summary_csv.hpp"
+#include "sim/io/atomic_file.hpp"
+
+namespace tcb {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The absolute budget arguments of a run, or an error when its reference
+// has no usable figure.
+std::vector<std::string> budget_args(const SweepRun& run, const fs::path& runs_dir, std::string& error) {
+  const SweepBudget& b = run.budget;
+  switch (b.kind) {
+    case SweepBudget::Kind::None: return {};
+    case SweepBudget::Kind::Ms: return {"--budget-ms", fmt::format("{}", b.value)};
+    case SweepBudget::Kind::Work: return {"--budget-work", fmt::format("{}", static_cast<std::uint64_t>(b.value))};
+    default: break;
+  }
+  const auto reference = read_complete_run(runs_dir / run.reference_id);
+  if (!reference || (*reference)["status"] != "ok") {
+    error = "its reference run " + run.reference_id + " did not complete";
+    return {};
+  }
+  if (b.kind == SweepBudget::Kind::RelativeMs) {
+    const auto p50 = summary_metric(*reference, "handling_ms.p50");
+    if (!p50) {
+      error = "reference has no handling_ms.p50";
+      return {};
+    }
+    return {"--budget-ms", fmt::format("{:.6g}", *p50 / b.value)};
+  }
+  const auto total = summary_metric(*reference, "work_units_total");
+  const double steps = (*reference)["steps"].get<double>();
+  if (!total || steps <= 0) {
+    error = "reference has no work_units_total";
+    return {};
+  }
+  const auto per_step = static_cast<std::uint64_t>(std::max(1.0, std::floor(*total / steps / b.value)));
+  return {"--budget-work", fmt::format("{}", per_step)};
+}
+
+pid_t start(const SweepPlan& plan, const SweepRun& run, const SweepOptions& options, std::vector<std::string> args) {
+  const fs::path dir = options.out_dir / "runs" / run.id;
+  std::vector<std::string> argv = {options.executable.string(), "run", run.scene, "--method", run.method,
+                                   "--seed", std::to_string(run.seed), "--out", dir.string(), "--quiet",
+                                   "--oracle", plan.oracle, "--budget-label", run.budget.label};
+  argv.insert(argv.end(), args.begin(), args.end());
+  if (plan.oracle_volume) argv.insert(argv.end(), {"--oracle-volume", *plan.oracle_volume});
+  if (plan.steps) argv.insert(argv.end(), {"--steps", std::to_string(*plan.steps)});
+  for (const auto& s : run.sets) argv.insert(argv.end(), {"--set", s});
+  const std::string log = (dir / "log.txt").string();
+  const pid_t pid = fork();
+  if (pid < 0) throw std::runtime_error("fork failed");
+  if (pid == 0) {
+    const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd >= 0) {
+      dup2(fd, 1);
+      dup2(fd, 2);
+      close(fd);
+    }
+    std::vector<char*> c;
+    for (auto& a : argv) c.push_back(a.data());
+    c.push_back(nullptr);
+    execv(c[0], c.data());
+    _exit(127);
+  }
+  return pid;
+}
+
+}  // namespace
+
+SweepOutcome run_sweep(const SweepPlan& plan, const SweepOptions& options) {
+  const fs::path runs_dir = options.out_dir / "runs";
+  fs::create_directories(runs_dir);
+  const std::vector<SweepRun> runs = shard_runs(plan, options.shard_index, options.shard_count);
+  SweepOutcome outcome;
+  outcome.total = runs.size();
+  std::map<std::string, std::string> status;  // run id -> status in this invocation
+  std::deque<SweepRun> pending;
+  std::size_t done = 0;
+  const auto finish = [&](const SweepRun& run, const std::string& s) {
+    status[run.id] = s;
+    if (s == "ok") ++outcome.ok;
+    else if (s == "unstable") ++outcome.unstable;
+    else if (s == "skipped") ++outcome.skipped;
+    else ++outcome.failed;
+    ++done;
+    if (options.on_run) options.on_run(done, outcome.total, run, s);
+  };
+  for (const SweepRun& run : runs) {
+    if (options.resume && read_complete_run(runs_dir / run.id)) {
+      finish(run, "skipped");
+      continue;
+    }
+    fs::remove_all(runs_dir / run.id);  // a half-written earlier attempt, or a rerun
+    pending.push_back(run);
+  }
+  std::map<pid_t, SweepRun> running;
+  const auto reference_done = [&](const SweepRun& run) {
+    if (run.reference_id.empty()) return true;
+    const bool ours = std::any_of(running.begin(), running.end(), [&](const auto& r) { return r.second.id == run.reference_id; }) ||
+                      std::any_of(pending.begin(), pending.end(), [&](const SweepRun& p) { return p.id == run.reference_id; });
+    return !ours;
+  };
+  while (!pending.empty() || !running.empty()) {
+    bool started = false;
+    for (auto it = pending.begin(); it != pending.end() && running.size() < std::max<std::size_t>(1, options.jobs);) {
+      if (!reference_done(*it)) {
+        ++it;
+        continue;
+      }
+      const SweepRun run = *it;
+      it = pending.erase(it);
+      std::string error;
+      const auto args = budget_args(run, runs_dir, error);
+      if (!error.empty()) {
+        fs::create_directories(runs_dir / run.id);
+        write_file_atomically(runs_dir / run.id / "log.txt", "not started: " + error + "\n");
+        finish(run, "failed");
+        continue;
+      }
+      fs::create_directories(runs_dir / run.id);
+      running[start(plan, run, options, args)] = run;
+      started = true;
+    }
+    if (running.empty()) {
+      if (!started && !pending.empty()) {  // cannot happen: references precede their runs
+        for (const auto& run : pending) finish(run, "failed");
+        pending.clear();
+      }
+      continue;
+    }
+    int wstatus = 0;
+    const pid_t pid = waitpid(-1, &wstatus, 0);
+    const auto it = running.find(pid);
+    if (it == running.end()) continue;
+    const SweepRun run = it->second;
+    running.erase(it);
+    const int code = WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : -1;
+    finish(run, code == 0 ? "ok" : code == 1 && read_complete_run(runs_dir / run.id) ? "unstable" : "failed");
+  }
+
+  std::vector<SummaryRow> rows;
+  for (const SweepRun& run : plan.runs) {
+    SummaryRow row{run.id, read_complete_run(runs_dir / run.id), "missing"};
+    if (!row.record && status.count(run.id)) row.status = status[run.id];
+    rows.push_back(std::move(row));
+  }
+  write_summary_csv(options.out_dir / "summary.csv", rows);
+  return outcome;
+}
+
+}  // namespace tcb

@@ -1,0 +1,119 @@
+#include "experiments/check/thresholds.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+
+#include "experiments/cli/cli.hpp"
+#include "sim/io/atomic_file.hpp"
+#include "sim/io/input_error.hpp"
+
+using namespace tcb;
+namespace fs = std::filesystem;
+
+namespace {
+
+// A results directory with two runs, run.json files written by hand: this
+// tests check, not the runs.
+fs::path fixture() {
+  const fs::path dir = fs::temp_directory_path() / ("tcbench_check_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  const auto run = [&](const std::string& name, const std::string& method, const std::string& budget, double recall) {
+    nlohmann::json j;
+    j["scene"] = "plates20";
+    j["method"] = method;
+    j["budget"] = {{"kind", "work"}, {"value", 100}, {"label", budget}};
+    j["seed"] = 0;
+    j["status"] = "ok";
+    j["summary"] = {{"recall_min", recall}, {"depth_err", {{"max", 0.002}}}, {"jitter", nullptr}};
+    fs::create_directories(dir / "runs" / name);
+    write_file_atomically(dir / "runs" / name / "run.json", j.dump());
+  };
+  run("a", "full", "none", 1.0);
+  run("b", "interruptible", "work:100", 0.8);
+  return dir;
+}
+
+fs::path thresholds(const std::string& text) {
+  const fs::path path = fs::temp_directory_path() / ("tcbench_thresholds_" + std::to_string(::getpid()) + ".toml");
+  write_file_atomically(path, text);
+  return path;
+}
+
+int cli(const std::vector<std::string>& args) {
+  std::vector<const char*> argv{"tcbench"};
+  for (const auto& a : args) argv.push_back(a.c_str());
+  return run_cli(static_cast<int>(argv.size()), argv.data());
+}
+
+}  // namespace
+
+TEST_CASE("check passes, fails and reports missing runs and metrics", "[check]") {
+  const fs::path dir = fixture();
+  const fs::path pass = thresholds(R"([[threshold]]
+scene = "plates20"
+method = "full"
+metric = "recall_min"
+min = 1.0
+
+[[threshold]]
+scene = "plates20"
+method = "full"
+metric = "depth_err.max"
+max = 0.01
+)");
+  CHECK(cli({"check", pass.string(), dir.string()}) == 0);
+
+  const std::vector<Threshold> t = load_thresholds(thresholds(R"([[threshold]]
+scene = "plates20"
+method = "interruptible"
+budget = "work:100"
+metric = "recall_min"
+min = 0.9
+
+[[threshold]]
+scene = "plates20"
+method = "full"
+metric = "jitter"
+max = 1.0
+
+[[threshold]]
+scene = "cube_drop"
+method = "full"
+metric = "recall_min"
+min = 0.0
+)"));
+  const std::vector<CheckRow> rows = check_thresholds(t, dir);
+  REQUIRE(rows.size() == 3);
+  CHECK(rows[0].verdict == "FAIL");  // 0.8 < 0.9
+  CHECK(*rows[0].value == 0.8);
+  CHECK(rows[1].verdict == "missing");  // null: nothing measured must not pass
+  CHECK(rows[2].verdict == "missing");  // no such run
+  CHECK(cli({"check", (fs::temp_directory_path() / ("tcbench_thresholds_" + std::to_string(::getpid()) + ".toml")).string(),
+             dir.string()}) == 1);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("check rejects malformed thresholds files with exit 2, naming file and line", "[check]") {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"[[threshold]]\nscene = \"plates20\"\nmethod = \"full\"\nmetric = \"recall_min\"\n", ":1: threshold: give min"},
+      {"[[threshold]]\nscene = \"plates20\"\nmethod = \"full\"\nmetric = \"recall_min\"\nmin = \"high\"\n", ":5: threshold.min"},
+      {"[[threshold]]\nscene = \"plates20\"\nmetric = \"recall_min\"\nmin = 1\n", ":1: threshold: 'method' is required"},
+      {"[[threshold]]\nscene = \"plates20\"\nmethod = \"full\"\nmetric = \"x\"\nmin = 1\nbound = 2\n", ":6: unknown key"},
+      {"[[threshold]\n", ":1:"},
+      {"title = 1\n", ":1: unknown key"},
+  };
+  for (const auto& [text, expected] : cases) {
+    INFO(text);
+    const fs::path path = thresholds(text);
+    try {
+      load_thresholds(path);
+      FAIL("accepted");
+    } catch (const InputError& e) {
+      CHECK_THAT(std::string(e.what()), Catch::Matchers::Contains(path.string() + expected));
+    }
+    CHECK(cli({"check", path.string(), "."}) == 2);
+  }
+}

@@ -1,0 +1,114 @@
+#include "experiments/sweep/sweep_plan.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <map>
+#include <set>
+
+#include "sim/io/atomic_file.hpp"
+#include "sim/io/input_error.hpp"
+
+using namespace tcb;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path write_sweep(const std::string& name, const std::string& text) {
+  const fs::path path = fs::temp_directory_path() / ("tcbench_sweep_" + name + "_" + std::to_string(::getpid()) + ".toml");
+  write_file_atomically(path, text);
+  return path;
+}
+
+}  // namespace
+
+TEST_CASE("sweep budgets: absolute and relative labels", "[sweep]") {
+  CHECK(parse_sweep_budget("none")->kind == SweepBudget::Kind::None);
+  CHECK(parse_sweep_budget("ms:4.5")->value == 4.5);
+  CHECK(parse_sweep_budget("work:20000")->kind == SweepBudget::Kind::Work);
+  CHECK(parse_sweep_budget("full/3")->kind == SweepBudget::Kind::RelativeMs);
+  CHECK(parse_sweep_budget("full-work/2")->value == 2.0);
+  for (const char* bad : {"", "ms:", "ms:-1", "work:1.5", "full/0", "full/x", "half", "ms:4.5x"})
+    CHECK_FALSE(parse_sweep_budget(bad).has_value());
+}
+
+TEST_CASE("a sweep expands to scenes x sets x seeds groups, each with its reference first", "[sweep]") {
+  const fs::path path = write_sweep("expand", R"([sweep]
+scenes = ["cube_drop", "plates20"]
+methods = ["full", "interruptible", "every_nth"]
+budgets = ["none", "work:20000", "full/3"]
+seeds = [0, 1]
+sets = [[], ["scene.dt=0.002"]]
+)");
+  const SweepPlan plan = load_sweep_plan(path);
+  CHECK(plan.groups == 2 * 2 * 2);
+  // Per group: full once, every_nth once (no budget), interruptible x 3 budgets.
+  CHECK(plan.runs.size() == 8 * 5);
+  std::set<std::string> ids;
+  std::map<std::string, std::size_t> position;
+  for (std::size_t i = 0; i < plan.runs.size(); ++i) {
+    ids.insert(plan.runs[i].id);
+    position[plan.runs[i].id] = i;
+  }
+  CHECK(ids.size() == plan.runs.size());
+  for (const SweepRun& run : plan.runs) {
+    if (!run.budget.relative()) continue;
+    REQUIRE(position.count(run.reference_id));
+    const SweepRun& reference = plan.runs[position[run.reference_id]];
+    CHECK(position[run.reference_id] < position[run.id]);
+    CHECK(reference.method == "full");
+    CHECK(reference.group == run.group);
+  }
+  fs::remove(path);
+}
+
+TEST_CASE("shards cover every run exactly once, whole groups each", "[sweep]") {
+  const fs::path path = write_sweep("shard", R"([sweep]
+scenes = ["cube_drop", "plates20"]
+methods = ["full", "interruptible"]
+budgets = ["full-work/2", "work:100"]
+seeds = [0, 1, 2]
+)");
+  const SweepPlan plan = load_sweep_plan(path);
+  for (std::size_t n = 1; n <= 7; ++n) {
+    std::map<std::string, int> seen;
+    std::map<std::size_t, std::size_t> shard_of_group;
+    for (std::size_t i = 0; i < n; ++i)
+      for (const SweepRun& run : shard_runs(plan, i, n)) {
+        ++seen[run.id];
+        if (shard_of_group.count(run.group)) CHECK(shard_of_group[run.group] == i);
+        shard_of_group[run.group] = i;
+      }
+    CHECK(seen.size() == plan.runs.size());
+    for (const auto& [id, count] : seen) CHECK(count == 1);
+  }
+  CHECK(parse_shard("2/4") == std::pair<std::size_t, std::size_t>{2, 4});
+  for (const char* bad : {"4/4", "-1/4", "1", "1/0", "a/b", "1/4x"}) CHECK_THROWS_AS(parse_shard(bad), InputError);
+  fs::remove(path);
+}
+
+TEST_CASE("malformed sweep files are rejected with the file and the line", "[sweep]") {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"[sweep]\nscenes = [\"cube_drop\"]\nmethods = [\"full\"]\nbudgets = [\"fast\"]\n", ":4: sweep.budgets"},
+      {"[sweep]\nscenes = [\"cube_drop\"]\nmethods = [\"nope\"]\nbudgets = [\"none\"]\n", ":3: sweep.methods"},
+      {"[sweep]\nscenes = [\"no_such_scene\"]\nmethods = [\"full\"]\nbudgets = [\"none\"]\n", ":2: sweep.scenes"},
+      {"[sweep]\nscenes = [\"cube_drop\"]\nmethods = [\"full\"]\nbudgets = [\"none\"]\nspeed = 3\n", ":5: unknown key"},
+      {"[sweep]\nscenes = []\nmethods = [\"full\"]\nbudgets = [\"none\"]\n", ":2: sweep.scenes"},
+      {"[sweep]\nscenes = [\"cube_drop\"\n", ":"},
+      {"[other]\n", "missing the [sweep] table"},
+  };
+  for (const auto& [text, expected] : cases) {
+    INFO(text);
+    const fs::path path = write_sweep("bad", text);
+    try {
+      load_sweep_plan(path);
+      FAIL("accepted");
+    } catch (const InputError& e) {
+      CHECK_THAT(std::string(e.what()), Catch::Matchers::Contains(path.string()));
+      CHECK_THAT(std::string(e.what()), Catch::Matchers::Contains(expected));
+    }
+    fs::remove(path);
+  }
+}
