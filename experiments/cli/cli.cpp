@@ -20,6 +20,7 @@ int run_cli(int argc, const char* const* argv) {
   commands.push_back(cli::make_sweep_command(app));
   commands.push_back(cli::make_check_command(app));
   commands.push_back(cli::make_reproduce_command(app));
+  commands.push_back(cli::make_report_command(app));
   commands.push_back(cli::make_list_command(app));
   commands.push_back(cli::make_mesh_command(app));
   try {

@@ -1,85 +1,74 @@
-// tcbench reproduce [--quick] [--out DIR]: the paper's experiment set.
-//
-// What exists today: the scenes, the collision pipeline and the baselines
-// (full, every_nth), but not the interruptible method, the oracle or the
-// report. reproduce runs the baselines on the scenes and says plainly, on the
-// terminal and in DIR/summary.md, that no figure of the paper is reproduced.
+// tcbench reproduce [--quick] [--out DIR]: the paper's experiment set, then
+// the report. The set is the sweep files in experiments/sweeps/paper/, run one
+// after the other with one job (wall-clock budgets need a quiet machine), each
+// into DIR/<sweep name>/; then `tcbench report DIR`.
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <chrono>
 #include <iostream>
 
 #include "experiments/cli/command.hpp"
-#include "experiments/cli/progress_line.hpp"
-#include "experiments/run/provenance.hpp"
-#include "experiments/run/run_scene.hpp"
-#include "experiments/scene/scene_file.hpp"
-#include <nlohmann/json.hpp>
+#include "experiments/cli/report_runner.hpp"
+#include "experiments/sweep/sweep_runner.hpp"
 
-#include "sim/io/atomic_file.hpp"
+#ifndef TCBENCH_SOURCE_DIR
+#define TCBENCH_SOURCE_DIR "."
+#endif
 
 namespace tcb::cli {
 namespace {
 
-constexpr std::int64_t kQuickSteps = 200;
-
 class ReproduceCommand final : public Command {
  public:
   explicit ReproduceCommand(CLI::App& parent) {
-    app = parent.add_subcommand("reproduce", "Run the paper's experiment set and write a summary");
-    app->footer("Today this runs the baselines (full, every_nth) on the scenes that exist and reproduces no\n"
-                "figure of the paper (the interruptible method, the oracle and the report are not built yet);\n"
-                "DIR/summary.md says which ones are missing.");
-    app->add_flag("--quick", m_quick, fmt::format("Run each scene for at most {} steps", kQuickSteps));
+    app = parent.add_subcommand("reproduce", "Run the paper's experiment set and draw the report");
+    app->footer(
+        "Runs every sweep in experiments/sweeps/paper/ (about 10 min on 2 cores; --quick: each run shortened\n"
+        "to the sweep's quick_steps, about 2 min), then `tcbench report DIR` (DIR/report/index.html).\n"
+        "Exit status: 0 all runs ok; 1 some run unstable or failed (the report still shows it); 2 bad input.");
+    app->add_flag("--quick", m_options.quick, "Shortened runs (each sweep's quick_steps)");
+    app->add_flag("--resume", m_options.resume, "Keep complete runs of an earlier reproduce in DIR");
     app->add_option("--out", m_out, "Result directory")->capture_default_str();
   }
 
   int execute() override {
-    const std::vector<std::pair<std::string, std::string>> runs = {
-        {"cube_drop", "full"}, {"plates20", "full"}, {"plates20", "every_nth"}};
-    std::cout << "tcbench reproduce: the interruptible method, the oracle and the report are not built yet, so this\n"
-                 "runs the baselines only and reproduces no figure of the paper.\n";
-    std::string table =
-        "| scene | method | steps | status | wall s | handling ms p50 | handling ms max |\n|---|---|---|---|---|---|---|\n";
-    int exit_code = 0;
-    for (const auto& [name, method] : runs) {
-      const SceneDesc scene = load_scene_file(resolve_scene(name, default_scene_dirs()));
-      RunOptions options;
-      options.method = method;
-      options.out_dir = std::filesystem::path(m_out) / "runs" / (name + "-" + method);
-      if (m_quick) options.steps = std::min<std::int64_t>(scene.steps, kQuickSteps);
-      options.command_line = "tcbench reproduce" + std::string(m_quick ? " --quick" : "");
-      ProgressLine progress(fmt::format("{} [{}]", name, method), stderr_is_terminal());
-      options.on_step = [&](std::int64_t done, std::int64_t total) { progress.update(done, total); };
-      const RunOutcome outcome = run_scene(scene, options);
-      progress.finish();
-      std::cout << fmt::format("  {:<12} {:<10} {} ({} steps, {:.2f} s)\n", name, method, outcome.status,
-                               outcome.steps_done, outcome.wall_s);
-      const auto run = nlohmann::json::parse(read_file(options.out_dir / "run.json"));
-      const auto& handling = run["summary"]["handling_ms"];
-      table += fmt::format("| {} | {} | {} | {} | {:.2f} | {} | {} |\n", name, method, outcome.steps_done,
-                           outcome.status, outcome.wall_s, handling.is_null() ? "-" : fmt::format("{:.3g}", handling["p50"].get<double>()),
-                           handling.is_null() ? "-" : fmt::format("{:.3g}", handling["max"].get<double>()));
-      exit_code = std::max(exit_code, outcome.exit_code());
+    const auto dir = std::filesystem::path(TCBENCH_SOURCE_DIR) / "experiments" / "sweeps" / "paper";
+    std::vector<std::filesystem::path> files;
+    for (const auto& entry : std::filesystem::directory_iterator(dir))
+      if (entry.path().extension() == ".toml") files.push_back(entry.path());
+    std::sort(files.begin(), files.end());
+    std::vector<SweepPlan> plans;
+    std::size_t total = 0;
+    for (const auto& f : files) {
+      plans.push_back(load_sweep_plan(f));  // all checked before anything runs
+      total += plans.back().runs.size();
     }
-    const std::string summary = fmt::format(
-        "# tcbench reproduce\n\n"
-        "Built by {} on {} ({} cores), {}.\n\n"
-        "## What ran\n\n{}\n"
-        "## What is not reproduced yet\n\n"
-        "None of the paper's figures or claims: handling time with and without interruption (plates20,\n"
-        "sneaker_grass), budget granularity, speed-up, jitter of the stack, latency and tunnelling\n"
-        "(fast_sphere_torus), the haptic force signal and the claims table need the interruptible handler,\n"
-        "the oracle, the remaining scenes and the report, which are not built yet.\n",
-        version_line(), machine_info()["cpu"].get<std::string>(), machine_info()["cores"].get<unsigned>(),
-        utc_timestamp(), table);
-    write_file_atomically(std::filesystem::path(m_out) / "summary.md", summary);
-    std::cout << "summary: " << (std::filesystem::path(m_out) / "summary.md").string() << '\n';
-    return exit_code;
+    m_options.executable = std::filesystem::read_symlink("/proc/self/exe");
+    m_options.jobs = 1;
+    const auto t0 = std::chrono::steady_clock::now();
+    std::size_t done = 0;
+    int exit_code = 0;
+    for (const SweepPlan& plan : plans) {
+      m_options.out_dir = std::filesystem::path(m_out) / plan.file.stem();
+      std::cerr << fmt::format("sweep {} ({}): {}\n", plan.file.stem().string(), plan.description,
+                               m_options.out_dir.string());
+      m_options.on_run = [&](std::size_t, std::size_t, const SweepRun& run, const std::string& status) {
+        ++done;
+        const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        std::cerr << fmt::format("  [{}/{}] {:<9} {} ({:.0f} s elapsed)\n", done, total, status, run.id, elapsed);
+      };
+      exit_code = std::max(exit_code, run_sweep(plan, m_options).exit_code());
+    }
+    const int report = run_report(m_out);
+    const double minutes = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / 60.0;
+    std::cout << fmt::format("reproduce: {} runs in {:.1f} min -> {}/report/index.html\n", total, minutes, m_out);
+    return report != 0 ? report : exit_code;
   }
 
  private:
-  bool m_quick = false;
   std::string m_out = "results/reproduce";
+  SweepOptions m_options;
 };
 
 }  // namespace

@@ -126,7 +126,7 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
   StepsCsv csv(options.out_dir / "steps.csv");
   std::vector<double> dynamics_ms, handling_ms, overshoot_pct, oracle_ms, recalls, precisions, depth_errors;
   double max_depth = 0.0;
-  std::optional<double> overlap_max;
+  std::optional<double> overlap_max, probe_force_max;
   std::int64_t oracle_steps = 0, overlap_steps = 0, overlap_invalid_steps = 0;
   std::set<std::string> unmeasured;
   std::vector<double> solver_iterations, cycle_lengths;
@@ -161,6 +161,12 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
       break;
     }
     row.handling_ms = ms_since(t_handler);
+    if (const auto probe = world.driven_contact_force_n()) {  // before step() clears the forces
+      row.probe_force_x = probe->x();
+      row.probe_force_y = probe->y();
+      row.probe_force_z = probe->z();
+      probe_force_max = std::max(probe_force_max.value_or(0.0), probe->norm());
+    }
     if (options.oracle.due(world.step_index + 1)) {  // on the positions the handler just saw
       const auto t_oracle = Clock::now();
       const OracleFrame frame = compute_inside_oracle(world);
@@ -306,6 +312,7 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
     summary["unserved_penetrations"] = latency.unserved();
   }
   summary["overlap_volume_max"] = overlap_max ? Json(*overlap_max) : Json(nullptr);
+  summary["probe_force_max"] = probe_force_max ? Json(*probe_force_max) : Json(nullptr);
   summary["overlap_steps"] = overlap_steps;
   summary["overlap_invalid_steps"] = overlap_invalid_steps;
   summary["nan_steps"] = nan_steps;

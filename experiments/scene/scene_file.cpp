@@ -78,6 +78,11 @@ ObjectDesc read_object(const toml::table& table, std::size_t index, const std::f
   o.scale = named.positive("scale", o.scale);
   o.velocity_m_per_s = named.vec3("velocity").value_or(o.velocity_m_per_s);
   o.passive = named.boolean("passive").value_or(false);
+  if (const auto trajectory = named.string("trajectory")) {
+    if (!o.passive) named.fail("trajectory", "a driven object must be passive = true");
+    if (named.vec3("position")) named.fail("position", "a driven object's position comes from its trajectory");
+    o.trajectory = *trajectory;
+  }
   o.self_collision = named.boolean("self_collision").value_or(false);
   named.node("name");
   o.material = read_material(named, context, file);

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <map>
+#include <sstream>
 
 #include "baselines/registry.hpp"
 #include "experiments/run/run_scene.hpp"
@@ -74,11 +75,33 @@ SweepPlan load_sweep_plan(const std::filesystem::path& path) {
     }
   }
   std::map<std::string, bool> uses_budget;
+  // A method entry is a registry name, optionally with its settings:
+  // "every_nth(n=4)" runs every_nth with --set every_nth.n=4.
+  struct MethodEntry {
+    std::string name, id;
+    std::vector<std::string> sets;
+  };
+  std::vector<MethodEntry> entries;
   for (const auto& m : methods) {
+    MethodEntry e{m, m, {}};
+    if (const auto open = m.find('('); open != std::string::npos) {
+      if (m.back() != ')') r.fail("methods", "'" + m + "': expected name(key=value,...)");
+      e.name = m.substr(0, open);
+      e.id = e.name;
+      std::stringstream settings(m.substr(open + 1, m.size() - open - 2));
+      for (std::string kv; std::getline(settings, kv, ',');) {
+        if (kv.find('=') == std::string::npos) r.fail("methods", "'" + m + "': expected name(key=value,...)");
+        e.sets.push_back(e.name + "." + kv);
+        e.id += '_';
+        e.id += id_part(kv);
+      }
+    }
     const auto& registry = method_registry();
-    const auto it = std::find_if(registry.begin(), registry.end(), [&](const MethodInfo& i) { return i.name == m; });
-    if (it == registry.end()) r.fail("methods", "unknown method '" + m + "' (see `tcbench list methods`)");
-    uses_budget[m] = it->uses_budget;
+    const auto it =
+        std::find_if(registry.begin(), registry.end(), [&](const MethodInfo& i) { return i.name == e.name; });
+    if (it == registry.end()) r.fail("methods", "unknown method '" + e.name + "' (see `tcbench list methods`)");
+    uses_budget[e.id] = it->uses_budget;
+    entries.push_back(e);
   }
   std::vector<SweepBudget> budgets;
   for (const auto& label : budget_labels) {
@@ -97,6 +120,8 @@ SweepPlan load_sweep_plan(const std::filesystem::path& path) {
     }
   }
   plan.steps = r.integer("steps", 1, std::int64_t{1} << 40);
+  plan.quick_steps = r.integer("quick_steps", 1, std::int64_t{1} << 40);
+  plan.record = static_cast<int>(r.integer("record", 1, 1 << 30).value_or(0));
   plan.oracle = r.string("oracle").value_or("off");
   try {
     parse_oracle_schedule(plan.oracle);
@@ -138,18 +163,19 @@ SweepPlan load_sweep_plan(const std::filesystem::path& path) {
         const std::size_t group = plan.groups++;
         const std::string tail =
             fmt::format("-s{}", seed) + (sets.size() > 1 ? fmt::format("-v{}", s) : std::string());
-        const auto add = [&](const std::string& method, const SweepBudget& budget, const std::string& reference) {
-          SweepRun run{id_part(scene) + "-" + method + "-" + id_part(budget.label) + tail, scene, method, budget, seed, s,
-                       sets[s], group, reference};
+        const auto add = [&](const MethodEntry& method, const SweepBudget& budget, const std::string& reference) {
+          SweepRun run{id_part(scene) + "-" + method.id + "-" + id_part(budget.label) + tail, scene, method.name, budget,
+                       seed, s, sets[s], group, reference};
+          run.sets.insert(run.sets.end(), method.sets.begin(), method.sets.end());
           if (seen.count(run.id)) return;
           seen[run.id] = plan.runs.size();
           plan.runs.push_back(run);
         };
         const std::string reference_id = id_part(scene) + "-full-none" + tail;
-        if (any_relative) add("full", SweepBudget{}, "");  // the reference comes first
-        for (const auto& method : methods)
+        if (any_relative) add(MethodEntry{"full", "full", {}}, SweepBudget{}, "");  // the reference comes first
+        for (const auto& method : entries)
           for (const auto& budget : budgets) {
-            if (!uses_budget[method]) {
+            if (!uses_budget[method.id]) {
               add(method, SweepBudget{}, "");
               continue;
             }

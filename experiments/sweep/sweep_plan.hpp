@@ -4,10 +4,13 @@
 ///   [sweep]
 ///   description = "..."                    # optional
 ///   scenes  = ["plates20", "cube_drop"]    # names or paths, as `tcbench run` takes them
-///   methods = ["full", "interruptible"]    # registry names
+///   methods = ["full", "interruptible", "every_nth(n=4)"]  # registry names, optionally
+///                                          # with settings: --set every_nth.n=4 for that run
 ///   budgets = ["none", "ms:4.5", "work:20000", "full/3", "full-work/3"]
 ///   seeds   = [0]                          # optional, default [0]
 ///   steps   = 200                          # optional: every run's length
+///   quick_steps = 300                      # optional: the length under `reproduce --quick`
+///   record  = 40                           # optional: VTU frames every N steps (report animation)
 ///   oracle  = "every:10"                   # optional, default "off"
 ///   oracle_volume = "off"                  # optional, default: with the oracle
 ///   sets    = [[], ["scene.dt=0.002"]]     # optional variants of --set, default [[]]
@@ -54,7 +57,8 @@ struct SweepRun {
 struct SweepPlan {
   std::filesystem::path file;
   std::string description;
-  std::optional<std::int64_t> steps;
+  std::optional<std::int64_t> steps, quick_steps;
+  int record = 0;  ///< --record N for every run (0: none)
   std::string oracle = "off";
   std::optional<std::string> oracle_volume;
   std::vector<SweepRun> runs;  ///< references before the runs that need them

@@ -59,7 +59,9 @@ pid_t start(const SweepPlan& plan, const SweepRun& run, const SweepOptions& opti
                                    "--oracle", plan.oracle, "--budget-label", run.budget.label};
   argv.insert(argv.end(), args.begin(), args.end());
   if (plan.oracle_volume) argv.insert(argv.end(), {"--oracle-volume", *plan.oracle_volume});
-  if (plan.steps) argv.insert(argv.end(), {"--steps", std::to_string(*plan.steps)});
+  const auto steps = options.quick && plan.quick_steps ? plan.quick_steps : plan.steps;
+  if (steps) argv.insert(argv.end(), {"--steps", std::to_string(*steps)});
+  if (plan.record > 0) argv.insert(argv.end(), {"--record", std::to_string(plan.record)});
   for (const auto& s : run.sets) argv.insert(argv.end(), {"--set", s});
   const std::string log = (dir / "log.txt").string();
   const pid_t pid = fork();

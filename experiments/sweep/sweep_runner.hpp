@@ -24,6 +24,7 @@ struct SweepOptions {
   std::size_t jobs = 1;
   std::size_t shard_index = 0, shard_count = 1;
   bool resume = false;
+  bool quick = false;  ///< use the plan's quick_steps (when it has them) as every run's length
   /// After each run ends (or is skipped): done, total, the run, its status.
   std::function<void(std::size_t, std::size_t, const SweepRun&, const std::string&)> on_run;
 };

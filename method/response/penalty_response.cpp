@@ -7,10 +7,11 @@ namespace tcb {
 double contact_reduced_mass(const World& world, const Contact& c) {
   const double m_point = world.bodies[c.object].mass_kg[c.vertex];
   const Body& B = world.bodies[c.other];
-  if (B.passive) return m_point;
+  if (B.passive) return m_point;  // the passive side does not move: all of the motion is the point's
   const Tet& t = B.mesh->tets[c.tet];
   double m_tet = 0.0;
   for (int k = 0; k < 4; ++k) m_tet += c.barycentric[k] * B.mass_kg[t[k]];
+  if (world.bodies[c.object].passive) return m_tet;  // a passive (or driven) point: all of it is the tet's
   return m_point + m_tet > 0.0 ? m_point * m_tet / (m_point + m_tet) : 0.0;
 }
 

@@ -36,7 +36,8 @@ struct ResponseParams {
 Vec3 penalty_force(const World& world, const Contact& contact, const ResponseParams& params, double dt_s);
 
 /// Reduced mass (kg) of the contact's point and the tet at its barycentric
-/// position; the point's own mass when the other body is passive.
+/// position; the point's own mass when the other body is passive, the
+/// tet's when the point's body is (passive and driven bodies do not yield).
 double contact_reduced_mass(const World& world, const Contact& contact);
 
 /// Adds force to the point and the barycentric reaction to the tet's vertices.

@@ -53,6 +53,22 @@ World build_world(const SceneDesc& scene) {
     const auto mesh = load_cached(object, scene, cache);
     std::vector<Vec3> scaled(mesh->positions_m.size());
     for (std::size_t i = 0; i < scaled.size(); ++i) scaled[i] = object.scale * mesh->positions_m[i];
+    if (!object.trajectory.empty()) {
+      std::shared_ptr<const Trajectory> path;
+      try {
+        path = std::make_shared<const Trajectory>(read_trajectory_csv(object.base_dir / object.trajectory));
+      } catch (const InputError& e) {
+        if (e.line() > 0 || scene.path.empty()) throw;
+        throw InputError(scene.path.string(), object.source_line, "object '" + object.name + "': " + e.what());
+      }
+      std::vector<Vec3> x(scaled);
+      for (Vec3& p : x) p += path->at(0.0);
+      Body body = make_body(object.name, object, mesh, std::move(x));
+      body.trajectory = std::move(path);
+      body.shape_m = std::move(scaled);
+      world.bodies.push_back(std::move(body));
+      continue;
+    }
     if (object.stack.count <= 1) {
       for (Vec3& p : scaled) p += object.position_m;
       world.bodies.push_back(make_body(object.name, object, mesh, std::move(scaled)));

@@ -48,6 +48,10 @@ struct ObjectDesc {
   bool self_collision = false;
   Material material;
   StackDesc stack;
+  /// A trajectory CSV (relative to base_dir): the object is driven along it
+  /// (its position over time, replacing position_m), is passive, and its
+  /// contact forces are the run's probe force. Empty: not driven.
+  std::string trajectory;
 };
 
 /// Response parameters for one pair of objects ([[collision.pair]]); a name

@@ -27,8 +27,27 @@ void World::step(double dt_s) {
     if (ground) apply_ground(*ground, body.x_m, body.v_m_per_s);
   }
   for (Body& body : bodies) std::fill(body.contact_force_n.begin(), body.contact_force_n.end(), Vec3::Zero());
+  for (Body& body : bodies) {
+    if (!body.trajectory) continue;
+    const Vec3 at = body.trajectory->at(time_s + dt_s);
+    for (std::size_t i = 0; i < body.x_m.size(); ++i) {
+      const Vec3 next = body.shape_m[i] + at;
+      body.v_m_per_s[i] = (next - body.x_m[i]) / dt_s;
+      body.x_m[i] = next;
+    }
+  }
   time_s += dt_s;
   ++step_index;
+}
+
+std::optional<Vec3> World::driven_contact_force_n() const {
+  std::optional<Vec3> sum;
+  for (const Body& b : bodies) {
+    if (!b.trajectory) continue;
+    if (!sum) sum = Vec3::Zero();
+    for (const Vec3& f : b.contact_force_n) *sum += f;
+  }
+  return sum;
 }
 
 double World::kinetic_energy_j() const {

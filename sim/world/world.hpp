@@ -5,7 +5,9 @@
 ///
 /// One step: for each dynamic body, f_ext = m g + contact forces, the body's
 /// elastic model advances it, then the ground projects it. Passive bodies are
-/// never integrated (their positions stay as built) but still collide.
+/// never integrated (their positions stay as built) but still collide; a
+/// driven passive body moves to its trajectory's position at the new time,
+/// with the velocity of that motion.
 /// Contact forces are cleared at the end of every step. Units: SI.
 
 #include <cstdint>
@@ -16,6 +18,7 @@
 
 #include "sim/dynamics/elastic_model.hpp"
 #include "sim/world/ground.hpp"
+#include "sim/world/trajectory.hpp"
 
 namespace tcb {
 
@@ -31,6 +34,9 @@ struct Body {
   bool passive = false;
   bool self_collision = false;
   std::unique_ptr<ElasticModel> model;  ///< null for passive bodies
+  /// Driven bodies (passive): positions are shape_m + trajectory->at(t) at every step.
+  std::shared_ptr<const Trajectory> trajectory;
+  std::vector<Vec3> shape_m;            ///< the scaled mesh before translation (driven bodies)
   std::vector<Vec3> external_force_n;   ///< scratch of step()
 };
 
@@ -53,6 +59,9 @@ class World {
   /// Largest vertex speed of the dynamic bodies; NaN if any state is not finite.
   double max_speed_m_per_s() const;
   std::size_t vertex_count() const;
+  /// Sum of the contact forces on the driven bodies (what a haptic device
+  /// would render), read before step() clears them; nullopt without any.
+  std::optional<Vec3> driven_contact_force_n() const;
 };
 
 }  // namespace tcb
