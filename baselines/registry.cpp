@@ -42,9 +42,17 @@ bool bool_setting(const std::map<std::string, MethodSetting>& settings, const st
 const std::vector<MethodInfo>& method_registry() {
   static const std::vector<MethodInfo> registry = {
       {"interruptible", "seed 000: the cycle under a time budget, resumed next step, forces extrapolated meanwhile", {},
-       [](const auto&) { return std::make_unique<InterruptibleHandler>(true); }, true, true},
+       [](const auto&) { return std::make_unique<InterruptibleHandler>(InterruptibleHandler::Stale::Extrapolate); }, true,
+       true},
       {"interruptible_no_extrapolation", "ablation: interruptible without force extrapolation", {},
-       [](const auto&) { return std::make_unique<InterruptibleHandler>(false); }, true, true},
+       [](const auto&) { return std::make_unique<InterruptibleHandler>(InterruptibleHandler::Stale::Nothing); }, true,
+       true},
+      {"interruptible_tracked",
+       "variant (not in seed 000): interruptible, but contacts known from earlier steps get the penalty force of "
+       "their depth tracked with the current positions instead of an extrapolated force",
+       {},
+       [](const auto&) { return std::make_unique<InterruptibleHandler>(InterruptibleHandler::Stale::Track); }, true,
+       true},
       {"full", "the whole collision cycle every step, never interrupted (seed 000's reference)", {},
        [](const auto&) { return std::make_unique<FullHandler>(DetectionMode::SpatialHash); }, true},
       {"every_nth", "a full cycle every n-th step, the last forces held in between (every_nth.n, every_nth.hold)",

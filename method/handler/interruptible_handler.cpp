@@ -3,6 +3,29 @@
 #include "method/response/penalty_response.hpp"
 
 namespace tcb {
+namespace {
+
+Vec3 tet_point_m(const World& world, const Contact& c) {
+  const Body& B = world.bodies[c.other];
+  const Tet& t = B.mesh->tets[c.tet];
+  Vec3 x = Vec3::Zero();
+  for (int k = 0; k < 4; ++k) x += c.barycentric[k] * B.x_m[t[k]];
+  return x;
+}
+
+}  // namespace
+
+std::optional<Vec3> InterruptibleHandler::stale_force(const World& world, std::int32_t object, std::int32_t vertex) {
+  if (!m_has_history[object][vertex]) return std::nullopt;
+  if (m_stale == Stale::Extrapolate) return extrapolated_force(m_history[object][vertex], m_step);
+  if (m_stale == Stale::Nothing) return std::nullopt;
+  const Tracked& t = m_tracked[object][vertex];
+  Contact now = t.contact;
+  const Vec3 offset = world.bodies[object].x_m[vertex] - tet_point_m(world, now);
+  now.depth_m = t.contact.depth_m - (offset - t.offset_m).dot(now.direction);
+  if (!(now.depth_m > 0.0)) return std::nullopt;  // tracked out of contact
+  return penalty_force(world, now, m_cycle->settings().response(now.object, now.other), m_cycle->settings().dt_s);
+}
 
 void InterruptibleHandler::init(const World& world, const SceneDesc& scene) {
   m_cycle = std::make_unique<CollisionCycle>(world, resolve_collision_settings(world, scene));
@@ -10,6 +33,7 @@ void InterruptibleHandler::init(const World& world, const SceneDesc& scene) {
     m_history.emplace_back(b.x_m.size());
     m_has_history.emplace_back(b.x_m.size(), 0);
     m_applied.emplace_back(b.x_m.size(), 0);
+    m_tracked.emplace_back(m_stale == Stale::Track ? b.x_m.size() : 0);
   }
 }
 
@@ -40,19 +64,27 @@ StepReport InterruptibleHandler::step(World& world, Budget& budget) {
       apply_contact_force(world, c, f);
       ++report.exact_forces;
       report.exact_points.emplace_back(c.object, c.vertex);
-    } else if (!done && m_extrapolate && m_has_history[c.object][c.vertex]) {
-      apply_contact_force(world, c, extrapolated_force(m_history[c.object][c.vertex], m_step));
-      ++report.estimated_forces;
+      if (m_stale == Stale::Track) m_tracked[c.object][c.vertex] = {c, world.bodies[c.object].x_m[c.vertex] - tet_point_m(world, c)};
+    } else if (!done) {
+      if (const auto f = stale_force(world, c.object, c.vertex)) {
+        // The reaction goes where the force last acted (the history's tet).
+        const Contact& where = m_stale == Stale::Track ? m_tracked[c.object][c.vertex].contact
+                                                        : m_history[c.object][c.vertex].contact;
+        apply_contact_force(world, where, *f);
+        ++report.estimated_forces;
+      }
     }
   }
-  if (!done && m_extrapolate) {
+  if (!done && m_stale != Stale::Nothing) {
     // Points in contact in earlier cycles that this cycle has not reached yet.
     for (std::size_t b = 0; b < m_history.size(); ++b)
       for (std::size_t v = 0; v < m_history[b].size(); ++v) {
         if (!m_has_history[b][v] || m_applied[b][v] == m_step) continue;
-        ForceHistory& h = m_history[b][v];
-        apply_contact_force(world, h.contact, extrapolated_force(h, m_step));
-        ++report.estimated_forces;
+        const auto object = static_cast<std::int32_t>(b), vertex = static_cast<std::int32_t>(v);
+        if (const auto f = stale_force(world, object, vertex)) {
+          apply_contact_force(world, m_stale == Stale::Track ? m_tracked[b][v].contact : m_history[b][v].contact, *f);
+          ++report.estimated_forces;
+        }
       }
   }
   if (done) {

@@ -27,7 +27,7 @@ TEST_CASE("every committed scene loads and runs", "[scene]") {
 TEST_CASE("haptic_probe: the probe presses the cow and the force the device renders points back up", "[scene][slow]") {
   const SceneDesc scene = load_scene_file(resolve_scene("haptic_probe", default_scene_dirs()));
   RunOptions options;
-  options.steps = 520;  // into the press (starts at 0.1 s, 5.5 cm down by 0.5 s)
+  options.steps = 420;  // into the press (starts at 0.1 s, 5.5 cm down by 0.4 s)
   options.out_dir = fs::temp_directory_path() / ("tcbench_haptic_" + std::to_string(::getpid()));
   REQUIRE(run_scene(scene, options).status == "ok");
   const auto run = nlohmann::json::parse(read_file(options.out_dir / "run.json"));

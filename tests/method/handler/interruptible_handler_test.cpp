@@ -37,7 +37,7 @@ TEST_CASE("interruptible: the budget stops after exactly k tasks and resumes at 
   std::int64_t total_tasks = 0;
   {
     World world = build_world(scene);
-    InterruptibleHandler handler(true);
+    InterruptibleHandler handler(InterruptibleHandler::Stale::Extrapolate);
     handler.init(world, scene);
     Budget unlimited = Budget::unlimited();
     REQUIRE(handler.step(world, unlimited).cycle_done);
@@ -46,7 +46,7 @@ TEST_CASE("interruptible: the budget stops after exactly k tasks and resumes at 
   for (int k : {1, 7, 40}) {
     INFO("k = " << k << " point queries in the first step; " << total_tasks << " tasks per cycle");
     World world = build_world(scene);
-    InterruptibleHandler handler(true);
+    InterruptibleHandler handler(InterruptibleHandler::Stale::Extrapolate);
     handler.init(world, scene);
     TickingClock ticking;
     const int per_step = k + 1;  // the first step's tasks: hashing the tets, then k point queries
@@ -75,7 +75,7 @@ TEST_CASE("interruptible: the budget stops after exactly k tasks and resumes at 
 TEST_CASE("interruptible: budget 0 hashes the tets, then does one task per step; stays finite", "[interruptible]") {
   const SceneDesc scene = pressed_blocks();
   World world = build_world(scene);
-  InterruptibleHandler handler(true);
+  InterruptibleHandler handler(InterruptibleHandler::Stale::Extrapolate);
   handler.init(world, scene);
   for (int s = 1; s <= 200; ++s) {
     Budget zero = Budget::work_units(0);
@@ -90,7 +90,7 @@ TEST_CASE("interruptible: budget 0 hashes the tets, then does one task per step;
 TEST_CASE("interruptible: a budget far larger than needed behaves like full", "[interruptible]") {
   const SceneDesc scene = pressed_blocks();
   World world = build_world(scene);
-  InterruptibleHandler handler(true);
+  InterruptibleHandler handler(InterruptibleHandler::Stale::Extrapolate);
   handler.init(world, scene);
   Budget huge = Budget::wall_ms(1e9);
   const StepReport r = handler.step(world, huge);
@@ -100,7 +100,7 @@ TEST_CASE("interruptible: a budget far larger than needed behaves like full", "[
 }
 
 TEST_CASE("interruptible with no budget gives full's forces bit for bit", "[interruptible]") {
-  for (const char* name : {"interruptible", "interruptible_no_extrapolation"}) {
+  for (const char* name : {"interruptible", "interruptible_no_extrapolation", "interruptible_tracked"}) {
     const SceneDesc scene = pressed_blocks();
     World a = build_world(scene), b = build_world(scene);
     auto full = make_handler("full", scene);
@@ -142,4 +142,44 @@ TEST_CASE("interruptible stays finite at the extremes", "[interruptible][extreme
       REQUIRE(std::isfinite(world.max_speed_m_per_s()));
     }
   }
+}
+
+TEST_CASE("interruptible_tracked: a known contact's depth follows the current positions between cycles",
+          "[interruptible]") {
+  const SceneDesc scene = pressed_blocks();
+  World world = build_world(scene);
+  InterruptibleHandler handler(InterruptibleHandler::Stale::Track);
+  handler.init(world, scene);
+  Budget unlimited = Budget::unlimited();
+  REQUIRE(handler.step(world, unlimited).cycle_done);  // cycle 1: depths and forces for the pressed points
+  Vec3 exact = Vec3::Zero();
+  for (const Vec3& f : world.bodies[1].contact_force_n) exact += f;
+  REQUIRE(exact.y() > 0.0);  // the floor pushes the cube up
+  std::fill(world.bodies[1].contact_force_n.begin(), world.bodies[1].contact_force_n.end(), Vec3::Zero());
+  std::fill(world.bodies[0].contact_force_n.begin(), world.bodies[0].contact_force_n.end(), Vec3::Zero());
+  // Learn the contacts at the pressed position, then raise the cube by `up`
+  // (negative: press it further) before a step whose cycle has no depths yet.
+  const auto stale_step = [&](double up) {
+    World moved = build_world(scene);
+    InterruptibleHandler h(InterruptibleHandler::Stale::Track);
+    h.init(moved, scene);
+    Budget u = Budget::unlimited();
+    h.step(moved, u);
+    for (auto& b : moved.bodies) std::fill(b.contact_force_n.begin(), b.contact_force_n.end(), Vec3::Zero());
+    for (Vec3& x : moved.bodies[1].x_m) x.y() += up;
+    Budget zero = Budget::work_units(0);  // only the tet hashing: no point has a depth in this cycle yet
+    const StepReport r = h.step(moved, zero);
+    CHECK_FALSE(r.cycle_done);
+    Vec3 f = Vec3::Zero();
+    for (const Vec3& g : moved.bodies[1].contact_force_n) f += g;
+    return std::make_pair(f, r.estimated_forces);
+  };
+  const auto [deeper, n_deeper] = stale_step(-0.002);   // 2 mm further in
+  const auto [shallower, n_out] = stale_step(0.02);     // 2 cm up: out of contact
+  const auto [same, n_same] = stale_step(0.0);
+  CHECK(n_deeper > 0);
+  CHECK(deeper.y() > same.y());                 // pushed in further: a larger force at once
+  CHECK(same.y() == Approx(exact.y()).epsilon(1e-9));  // not moved: the exact force again
+  CHECK(shallower.y() == 0.0);                  // tracked out of contact: no force
+  CHECK(n_out == 0);
 }
