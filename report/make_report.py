@@ -27,6 +27,7 @@ OVERSHOOT_CLAIM_PCT = 5.0  # seed 000: "a granularity of less than five percent"
 SPEEDUP_CLAIM = 3.0        # seed 000: "saves up to two third of the computation time"
 LATENCY_CLAIM_STEPS = 2    # seed 000: latency up to two frames keeps the torus out of the sphere
 JITTER_FACTOR = 10.0       # ours, not the paper's: "plausible" resting contact jitters at most 10x full's
+STANDING_FRACTION = 0.9    # ours: a stack stands while its top centre keeps 90 % of its height
 
 
 # ---------------------------------------------------------------- loading
@@ -230,10 +231,13 @@ class Report:
         ax.set_xticks(range(len(runs)), [r.label().replace(" @ ", "\n") for r in runs], fontsize=6)
         ax.set(ylabel="RMS vertical velocity, settled half (m/s)")
         for k, r in enumerate(runs):
-            ax.text(k, vals[k], f"{vals[k]:.3g}" + ("" if r.status == "ok" else f"\n{r.status}"),
-                    ha="center", va="bottom", fontsize=6)
+            h0, h1 = r.metric("top_centre_height_m.initial"), r.metric("top_centre_height_m.final")
+            fallen = h0 is not None and h1 is not None and h1 < STANDING_FRACTION * h0
+            ax.text(k, vals[k], f"{vals[k]:.3g}" + ("" if r.status == "ok" else f"\n{r.status}")
+                    + (f"\ncollapsed\n(top {h1:.2f} m)" if fallen else ""), ha="center", va="bottom", fontsize=6)
         self.save(fig, "fig4_jitter", "Jitter of the 20-plate stack",
-                  "RMS vertical velocity of the plates over the second half of each run (red: run not ok).", runs)
+                  "RMS vertical velocity of the plates over the second half of each run (red: run not ok); "
+                  "'collapsed' where the top plate's centre ended below 90 % of its height.", runs)
 
     # 5. latency and tunnelling against budget
     def latency(self):
@@ -358,11 +362,14 @@ class Report:
             t, j = r.metric("tunneling"), r.metric("jitter")
             jf = full_stack[0].metric("jitter") if full_stack else None
             ratio = j / jf if j is not None and jf else None
-            # Plausible: stable, nothing passed through, and jitter within JITTER_FACTOR of full's.
-            ok = r.status == "ok" and t == 0 and ratio is not None and ratio <= JITTER_FACTOR
-            rows.append(("The stack rests plausibly under the budget (stable, no pass-through, jitter within "
-                         f"{JITTER_FACTOR:g}x of full's)", "robust resting contact",
-                         f"{r.r.get('steps')} steps: status {r.status}, tunnelling {t}, jitter "
+            h0, h1 = r.metric("top_centre_height_m.initial"), r.metric("top_centre_height_m.final")
+            standing = h0 is not None and h1 is not None and h1 >= STANDING_FRACTION * h0
+            # Plausible: stable, standing, nothing passed through, jitter within JITTER_FACTOR of full's.
+            ok = r.status == "ok" and t == 0 and standing and ratio is not None and ratio <= JITTER_FACTOR
+            height = f"top plate centre {h0:.3f} -> {h1:.3f} m" if h0 is not None and h1 is not None else "height not measured"
+            rows.append(("The stack rests plausibly under the budget (stable, still standing, no pass-through, "
+                         f"jitter within {JITTER_FACTOR:g}x of full's)", "robust resting contact",
+                         f"{r.r.get('steps')} steps: status {r.status}, {height}, tunnelling {t}, jitter "
                          f"{j if j is not None else float('nan'):.3g} m/s"
                          + (f" = {ratio:.0f}x full's {jf:.3g}" if ratio is not None else " (no full run to compare)"),
                          verdict(ok)))

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <set>
 #include <cmath>
+#include <limits>
 
 #include "baselines/registry.hpp"
 #include "experiments/metrics/distribution.hpp"
@@ -82,6 +83,15 @@ std::string budget_label(const BudgetSpec& budget) {
   return "none";
 }
 
+std::optional<double> top_centre_height_m(const World& world) {
+  const double g = world.gravity_m_per_s2.norm();
+  const Vec3 up = g > 0.0 ? Vec3(-world.gravity_m_per_s2 / g) : Vec3(0.0, 1.0, 0.0);
+  std::optional<double> top;
+  for (const Body& b : world.bodies)
+    if (!b.passive) top = std::max(top.value_or(-std::numeric_limits<double>::infinity()), centre_of_mass_m(b).dot(up));
+  return top;
+}
+
 OracleSchedule parse_oracle_schedule(const std::string& text, const std::string& option) {
   if (text == "off") return {0};
   if (text == "every") return {1};
@@ -111,6 +121,7 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
   World world = build_world(scene);
   const OracleSchedule overlap_schedule = options.overlap.value_or(options.oracle);
   TunnelingMeter tunneling(world);  // pairs interlocked at the start are not tunnelling when they end so
+  const std::optional<double> top_centre_initial = top_centre_height_m(world);
   std::unique_ptr<SurfaceTrianglePairs> triangle_pairs;
   if (options.oracle.every > 0) triangle_pairs = std::make_unique<SurfaceTrianglePairs>(world);
   handler->init(world, scene);  // not timed
@@ -289,6 +300,13 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
   summary["max_depth"] = oracle_steps > 0 ? Json(max_depth) : Json(nullptr);
   summary["oracle_steps"] = oracle_steps;
   summary["oracle_ms"] = distribution_json(oracle_ms);
+  // Whether a stack still stands: the highest centre of a dynamic body against
+  // gravity, at the start and the end (a collapse need not be tunnelling).
+  const std::optional<double> top_centre_final = top_centre_height_m(world);
+  summary["top_centre_height_m"] =
+      top_centre_initial && top_centre_final && std::isfinite(*top_centre_final)
+          ? Json{{"initial", *top_centre_initial}, {"final", *top_centre_final}}
+          : Json(nullptr);
   summary["jitter"] = scene.jitter_measure.empty() || jitter.samples() == 0 ? Json(nullptr) : Json(jitter.rms_m_per_s());
   if (std::isfinite(world.max_speed_m_per_s())) {
     const TunnelingResult tunnelled = tunneling.finish(world);

@@ -31,6 +31,10 @@ struct OracleSchedule {
   bool due(std::int64_t step) const { return every > 0 && step % every == 0; }
 };
 
+/// The highest centre of mass of a dynamic body along -gravity (y without
+/// gravity), m; nullopt without dynamic bodies. Summary top_centre_height_m.
+std::optional<double> top_centre_height_m(const World& world);
+
 /// "none", "ms:X" or "work:N": the absolute form of a budget, as sweeps and checks name it.
 std::string budget_label(const BudgetSpec& budget);
 

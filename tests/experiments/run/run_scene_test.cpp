@@ -118,6 +118,9 @@ TEST_CASE("a run writes complete steps.csv and run.json", "[run]") {
   CHECK(run["summary"]["handling_ms"]["p50"].is_number());
   CHECK(run["summary"]["recall_min"].is_null());  // no oracle yet
   CHECK(run["summary"]["nan_steps"] == 0);
+  // The dropped cube fell: its centre is lower at the end than at the start.
+  CHECK(run["summary"]["top_centre_height_m"]["final"].get<double>() <
+        run["summary"]["top_centre_height_m"]["initial"].get<double>());
   CHECK(fs::exists(dir / "frames.pvd"));
   CHECK(fs::exists(dir / "frames/frame_000050.vtu"));
   for (const auto& entry : fs::recursive_directory_iterator(dir)) CHECK(entry.path().extension() != ".tmp");
