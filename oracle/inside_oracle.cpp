@@ -1,4 +1,5 @@
 #include "oracle/inside_oracle.hpp"
+#include "oracle/surface_mesh.hpp"
 #include "oracle/tet_inside.hpp"
 #include "oracle/tunneling.hpp"
 
@@ -14,7 +15,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <memory>
 
 namespace tcb {
@@ -53,14 +53,9 @@ std::unique_ptr<SoupQuery> soup_of(const Body& body) {
 // B's boundary surface at its current positions; nullptr when not closed.
 std::unique_ptr<SurfaceQuery> surface_of(const Body& body) {
   auto q = std::make_unique<SurfaceQuery>();
-  std::map<std::int32_t, Mesh::Vertex_index> index;
-  for (const std::int32_t v : body.mesh->surface_vertices) {
-    const Vec3& p = body.x_m[v];
-    index[v] = q->mesh.add_vertex(Point(p.x(), p.y(), p.z()));
-  }
-  for (const Triangle& f : body.mesh->surface)
-    if (q->mesh.add_face(index[f[0]], index[f[1]], index[f[2]]) == Mesh::null_face()) return nullptr;
-  if (!CGAL::is_closed(q->mesh)) return nullptr;
+  bool manifold = false;
+  q->mesh = oracle_detail::surface_mesh_of<K>(body, manifold);
+  if (!manifold || !CGAL::is_closed(q->mesh)) return nullptr;
   q->tree = std::make_unique<Tree>(faces(q->mesh).first, faces(q->mesh).second, q->mesh);
   q->tree->accelerate_distance_queries();
   return q;

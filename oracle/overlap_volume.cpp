@@ -1,4 +1,5 @@
 #include "oracle/overlap_volume.hpp"
+#include "oracle/surface_mesh.hpp"
 
 // The one translation unit with the exact-constructions kernel: corefinement
 // is slow to compile and to run, so nothing else pays for it.
@@ -23,18 +24,7 @@ namespace PMP = CGAL::Polygon_mesh_processing;
 using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Epeck = CGAL::Exact_predicates_exact_constructions_kernel;
 
-template <class Kernel>
-CGAL::Surface_mesh<typename Kernel::Point_3> surface_mesh_of(const Body& body, bool& ok) {
-  using Mesh = CGAL::Surface_mesh<typename Kernel::Point_3>;
-  Mesh mesh;
-  std::map<std::int32_t, typename Mesh::Vertex_index> index;
-  for (const std::int32_t v : body.mesh->surface_vertices)
-    index[v] = mesh.add_vertex(typename Kernel::Point_3(body.x_m[v].x(), body.x_m[v].y(), body.x_m[v].z()));
-  ok = true;
-  for (const Triangle& f : body.mesh->surface)
-    if (mesh.add_face(index[f[0]], index[f[1]], index[f[2]]) == Mesh::null_face()) ok = false;
-  return mesh;
-}
+using oracle_detail::surface_mesh_of;
 
 // Why a body's surface cannot bound an exact volume, or nullopt when it can.
 std::optional<std::string> guard_failure(const Body& body) {

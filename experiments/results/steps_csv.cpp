@@ -5,21 +5,66 @@
 namespace tcb {
 namespace {
 
+// One table of (name, value): the header and every row come from it, so the
+// two cannot drift apart when a column is added.
 template <typename T>
-std::string cell(const std::optional<T>& v) {
-  return v ? fmt::format("{}", *v) : std::string();
+std::string text(const std::optional<T>& v) {
+  return v ? fmt::format("{}", *v) : std::string();  // not measured: an empty cell, never 0
+}
+template <typename T>
+std::string text(const T& v) {
+  return fmt::format("{}", v);
+}
+template <auto Member>
+std::string field(const StepRow& r) {
+  return text(r.*Member);
+}
+
+struct Column {
+  const char* name;
+  std::string (*value)(const StepRow&);
+};
+
+const std::vector<Column>& table() {
+  static const std::vector<Column> columns = {
+      {"step", field<&StepRow::step>},
+      {"time_s", field<&StepRow::time_s>},
+      {"handling_ms", field<&StepRow::handling_ms>},
+      {"budget_ms", field<&StepRow::budget_ms>},
+      {"work_units", field<&StepRow::work_units>},
+      {"cycle", field<&StepRow::cycle>},
+      {"cycle_done", field<&StepRow::cycle_done>},
+      {"colliding_points", field<&StepRow::colliding_points>},
+      {"exact_forces", field<&StepRow::exact_forces>},
+      {"estimated_forces", field<&StepRow::estimated_forces>},
+      {"oracle_points", field<&StepRow::oracle_points>},
+      {"recall", field<&StepRow::recall>},
+      {"precision", field<&StepRow::precision>},
+      {"depth_err_mean", field<&StepRow::depth_err_mean>},
+      {"depth_err_max", field<&StepRow::depth_err_max>},
+      {"max_depth", field<&StepRow::max_depth>},
+      {"overlap_volume", field<&StepRow::overlap_volume>},
+      {"triangle_pairs", field<&StepRow::triangle_pairs>},
+      {"oracle_ms", field<&StepRow::oracle_ms>},
+      {"kinetic_energy", field<&StepRow::kinetic_energy>},
+      {"dynamics_ms", field<&StepRow::dynamics_ms>},
+      {"max_speed", field<&StepRow::max_speed>},
+      {"solver_iterations", field<&StepRow::solver_iterations>},
+      {"probe_force_x", field<&StepRow::probe_force_x>},
+      {"probe_force_y", field<&StepRow::probe_force_y>},
+      {"probe_force_z", field<&StepRow::probe_force_z>},
+  };
+  return columns;
 }
 
 }  // namespace
 
 const std::vector<std::string>& StepsCsv::columns() {
-  static const std::vector<std::string> names = {
-      "step",          "time_s",           "handling_ms",    "budget_ms",      "work_units",
-      "cycle",         "cycle_done",       "colliding_points", "exact_forces", "estimated_forces",
-      "oracle_points", "recall",           "precision",      "depth_err_mean", "depth_err_max",
-      "max_depth",     "overlap_volume",   "triangle_pairs", "oracle_ms",      "kinetic_energy",
-      "dynamics_ms",   "max_speed",        "solver_iterations", "probe_force_x", "probe_force_y",
-      "probe_force_z"};
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> n;
+    for (const Column& c : table()) n.emplace_back(c.name);
+    return n;
+  }();
   return names;
 }
 
@@ -30,14 +75,14 @@ StepsCsv::StepsCsv(const std::filesystem::path& path) : m_file(path) {
 }
 
 void StepsCsv::write(const StepRow& r) {
-  m_file.stream() << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", r.step,
-                                 r.time_s, cell(r.handling_ms), cell(r.budget_ms), cell(r.work_units), cell(r.cycle),
-                                 cell(r.cycle_done), cell(r.colliding_points), cell(r.exact_forces),
-                                 cell(r.estimated_forces), cell(r.oracle_points), cell(r.recall), cell(r.precision),
-                                 cell(r.depth_err_mean), cell(r.depth_err_max), cell(r.max_depth),
-                                 cell(r.overlap_volume), cell(r.triangle_pairs), cell(r.oracle_ms), r.kinetic_energy, r.dynamics_ms,
-                                 r.max_speed, r.solver_iterations, cell(r.probe_force_x), cell(r.probe_force_y),
-                                 cell(r.probe_force_z));
+  const auto& columns = table();
+  std::string line;
+  for (std::size_t i = 0; i < columns.size(); ++i) {
+    if (i) line += ',';
+    line += columns[i].value(r);
+  }
+  line += '\n';
+  m_file.stream() << line;
 }
 
 }  // namespace tcb

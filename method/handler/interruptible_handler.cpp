@@ -15,16 +15,21 @@ Vec3 tet_point_m(const World& world, const Contact& c) {
 
 }  // namespace
 
-std::optional<Vec3> InterruptibleHandler::stale_force(const World& world, std::int32_t object, std::int32_t vertex) {
-  if (!m_has_history[object][vertex]) return std::nullopt;
-  if (m_stale == Stale::Extrapolate) return extrapolated_force(m_history[object][vertex], m_step);
-  if (m_stale == Stale::Nothing) return std::nullopt;
+std::optional<InterruptibleHandler::StaleForce> InterruptibleHandler::stale_force(const World& world,
+                                                                                  std::int32_t object,
+                                                                                  std::int32_t vertex) {
+  if (!m_has_history[object][vertex] || m_stale == Stale::Nothing) return std::nullopt;
+  if (m_stale == Stale::Extrapolate) {
+    ForceHistory& h = m_history[object][vertex];
+    return StaleForce{&h.contact, extrapolated_force(h, m_step)};
+  }
   const Tracked& t = m_tracked[object][vertex];
   Contact now = t.contact;
   const Vec3 offset = world.bodies[object].x_m[vertex] - tet_point_m(world, now);
   now.depth_m = t.contact.depth_m - (offset - t.offset_m).dot(now.direction);
   if (!(now.depth_m > 0.0)) return std::nullopt;  // tracked out of contact
-  return penalty_force(world, now, m_cycle->settings().response(now.object, now.other), m_cycle->settings().dt_s);
+  return StaleForce{&t.contact, penalty_force(world, now, m_cycle->settings().response(now.object, now.other),
+                                              m_cycle->settings().dt_s)};
 }
 
 void InterruptibleHandler::init(const World& world, const SceneDesc& scene) {
@@ -67,10 +72,7 @@ StepReport InterruptibleHandler::step(World& world, Budget& budget) {
       if (m_stale == Stale::Track) m_tracked[c.object][c.vertex] = {c, world.bodies[c.object].x_m[c.vertex] - tet_point_m(world, c)};
     } else if (!done) {
       if (const auto f = stale_force(world, c.object, c.vertex)) {
-        // The reaction goes where the force last acted (the history's tet).
-        const Contact& where = m_stale == Stale::Track ? m_tracked[c.object][c.vertex].contact
-                                                        : m_history[c.object][c.vertex].contact;
-        apply_contact_force(world, where, *f);
+        apply_contact_force(world, *f->where, f->force_n);  // the reaction goes where the force last acted
         ++report.estimated_forces;
       }
     }
@@ -82,7 +84,7 @@ StepReport InterruptibleHandler::step(World& world, Budget& budget) {
         if (!m_has_history[b][v] || m_applied[b][v] == m_step) continue;
         const auto object = static_cast<std::int32_t>(b), vertex = static_cast<std::int32_t>(v);
         if (const auto f = stale_force(world, object, vertex)) {
-          apply_contact_force(world, m_stale == Stale::Track ? m_tracked[b][v].contact : m_history[b][v].contact, *f);
+          apply_contact_force(world, *f->where, f->force_n);
           ++report.estimated_forces;
         }
       }

@@ -61,8 +61,13 @@ class InterruptibleHandler final : public CollisionHandler {
     Contact contact;  ///< the last depth-based contact: tet, barycentric, direction, depth d0
     Vec3 offset_m = Vec3::Zero();  ///< r0 = x_point - x_tet(barycentric) when its force was applied
   };
-  /// The stale force of a point: extrapolated, tracked, or none.
-  std::optional<Vec3> stale_force(const World& world, std::int32_t object, std::int32_t vertex);
+  /// The stale force of a point (extrapolated, tracked, or none) and the
+  /// contact whose tet takes its reaction.
+  struct StaleForce {
+    const Contact* where;
+    Vec3 force_n;
+  };
+  std::optional<StaleForce> stale_force(const World& world, std::int32_t object, std::int32_t vertex);
 
   Stale m_stale;
   std::unique_ptr<CollisionCycle> m_cycle;
