@@ -8,8 +8,7 @@ namespace tcb {
 
 class NoneHandler final : public CollisionHandler {
  public:
-  std::string_view name() const override { return "none"; }
-  void init(const World&, const SceneDesc&) override {}
+  void init(const World&, const CollisionSettings&) override {}
   StepReport step(World&, Budget&) override { return {}; }
   const std::vector<Contact>& contacts() const override { return m_none; }
 

@@ -5,31 +5,38 @@
 /// brute_force's colliding points). Adding a method: one file in baselines/
 /// (or method/) and one entry in registry.cpp.
 
-#include <algorithm>
 #include <functional>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "method/handler/collision_handler.hpp"
+#include "method/handler/method_settings.hpp"
 
 namespace tcb {
 
 struct MethodInfo {
   std::string name;
   std::string description;
-  std::vector<std::string> settings;  ///< keys accepted in the method's scene table
-  /// Builds the handler from its settings (validated: unknown keys and bad
-  /// values throw InputError naming where they were written).
-  std::function<std::unique_ptr<CollisionHandler>(const std::map<std::string, MethodSetting>&)> make;
-  bool detects = true;  ///< false for `none`: it is exempt from the cross-method test
-  bool uses_budget = false;  ///< true when a budget changes what it does (sweeps run the others once)
+  /// The keys of its scene table [method.NAME] (and of a sweep's
+  /// { name = "NAME", key = value } entry), typed, with defaults and ranges.
+  std::vector<SettingSpec> settings = {};
+  /// Builds the handler from settings already checked against `settings`.
+  std::function<std::unique_ptr<CollisionHandler>(const MethodSettings&)> make;
+  /// False for `none`: it detects nothing, so the cross-method test skips it.
+  bool detects = true;
+  /// True when a budget changes what it does; sweeps run the others once, budget none.
+  bool uses_budget = false;
 };
 
 const std::vector<MethodInfo>& method_registry();
 
-/// The handler for `name` with the scene's settings for it; InputError for an
-/// unknown name or bad settings. The handler is not yet init()ed.
-std::unique_ptr<CollisionHandler> make_handler(const std::string& name, const SceneDesc& scene);
+/// The method of that name; InputError naming --method and listing the
+/// methods when there is none.
+const MethodInfo& find_method(const std::string& name);
+
+/// The handler for `name` with these settings (the method's defaults when
+/// omitted); not yet init()ed.
+std::unique_ptr<CollisionHandler> make_handler(const std::string& name, const MethodSettings* settings = nullptr);
 
 }  // namespace tcb

@@ -5,7 +5,7 @@
 
 namespace tcb {
 
-TunnelingMeter::TunnelingMeter(const World& initial) {
+TunnelingJudge::TunnelingJudge(const World& initial) {
   for (const Body& b : initial.bodies) m_volume_m3.push_back(enclosed_volume_m3(b));
   m_interlocked = centres_inside_pairs(initial);
   const BodyPairs deep = deep_overlaps(compute_overlap_volumes(initial));
@@ -14,7 +14,7 @@ TunnelingMeter::TunnelingMeter(const World& initial) {
   m_interlocked.erase(std::unique(m_interlocked.begin(), m_interlocked.end()), m_interlocked.end());
 }
 
-BodyPairs TunnelingMeter::deep_overlaps(const OverlapFrame& frame) const {
+BodyPairs TunnelingJudge::deep_overlaps(const OverlapFrame& frame) const {
   BodyPairs pairs;
   for (const PairOverlap& p : frame.pairs) {
     const double smaller = std::min(m_volume_m3[p.a], m_volume_m3[p.b]);  // NaN if either is unmeasurable
@@ -24,12 +24,12 @@ BodyPairs TunnelingMeter::deep_overlaps(const OverlapFrame& frame) const {
   return pairs;
 }
 
-void TunnelingMeter::record_overlaps(const OverlapFrame& frame) {
+void TunnelingJudge::record_overlaps(const OverlapFrame& frame) {
   for (const BodyPair& p : deep_overlaps(frame))
     if (!std::binary_search(m_interlocked.begin(), m_interlocked.end(), p)) m_tunnelled.insert(p);
 }
 
-TunnelingResult TunnelingMeter::finish(const World& final_world) {
+TunnelingResult TunnelingJudge::finish(const World& final_world) {
   TunnelingResult r;
   record_overlaps(compute_overlap_volumes(final_world));
   for (const BodyPair& p : centres_inside_pairs(final_world))

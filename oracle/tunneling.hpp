@@ -34,10 +34,10 @@ using BodyPairs = std::vector<BodyPair>;
 /// Sorted (a, b), a < b, where one centre lies strictly inside the other.
 BodyPairs centres_inside_pairs(const World& world);
 
-class TunnelingMeter {
+class TunnelingJudge {
  public:
   /// Records the initial volumes and the pairs interlocked at the start.
-  explicit TunnelingMeter(const World& initial);
+  explicit TunnelingJudge(const World& initial);
   /// Notes the pairs whose overlap in `frame` exceeds half the smaller object.
   void record_overlaps(const OverlapFrame& frame);
   /// Judges the final state and returns the count over the whole run.

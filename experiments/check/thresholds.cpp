@@ -56,7 +56,8 @@ std::vector<CheckRow> check_thresholds(const std::vector<Threshold>& thresholds,
   for (const Threshold& th : thresholds) {
     bool matched = false;
     for (const auto& [name, run] : runs) {
-      if (run.value("scene", "") != th.scene || run.value("method", "") != th.method) continue;
+      if (run.value("scene", "") != th.scene || run.value("method_label", run.value("method", "")) != th.method)
+        continue;
       if (run["budget"].value("label", "") != th.budget) continue;
       if (th.seed && run["seed"].get<std::uint64_t>() != *th.seed) continue;
       matched = true;

@@ -4,7 +4,7 @@
 ///
 ///   [[threshold]]
 ///   scene  = "plates20"
-///   method = "interruptible"
+///   method = "interruptible"   # the run's method_label: "every_nth(n=3)" for a non-default setting
 ///   budget = "work:20000"   # the run's budget label (run.json budget.label); default "none"
 ///   seed   = 0              # optional: otherwise every seed's run must pass
 ///   metric = "recall_min"   # a summary key; nested with dots: "depth_err.max"

@@ -31,6 +31,7 @@ int run_cli(int argc, const char* const* argv) {
   }
   for (const auto& command : commands) {
     if (!command->app->parsed()) continue;
+    command->argv.assign(argv, argv + argc);
     try {
       return command->execute();
     } catch (const CLI::ParseError& e) {

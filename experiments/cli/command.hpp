@@ -5,6 +5,8 @@
 #include <CLI/CLI.hpp>
 
 #include <memory>
+#include <string>
+#include <vector>
 
 namespace tcb::cli {
 
@@ -13,6 +15,8 @@ class Command {
   virtual ~Command() = default;
   virtual int execute() = 0;
   CLI::App* app = nullptr;
+  /// The whole command line as given (recorded by the commands that write results).
+  std::vector<std::string> argv;
 };
 
 std::unique_ptr<Command> make_run_command(CLI::App& parent);

@@ -6,7 +6,7 @@
 #include <set>
 
 #include "experiments/cli/command.hpp"
-#include "experiments/run/run_scene.hpp"
+#include "baselines/registry.hpp"
 #include "experiments/scene/scene_file.hpp"
 
 namespace tcb::cli {
@@ -21,8 +21,12 @@ class ListCommand final : public Command {
 
   int execute() override {
     if (m_what == "methods") {
-      for (const auto& [name, description] : available_methods())
-        std::cout << fmt::format("{:<32} {}\n", name, description);
+      for (const MethodInfo& m : method_registry()) {
+        std::cout << fmt::format("{:<32} {}\n", m.name, m.description);
+        for (const SettingSpec& s : m.settings)  // [method.NAME] keys, as scenes and sweeps write them
+          std::cout << fmt::format("{:<32}   method.{}.{} ({}, default {}): {}\n", "", m.name, s.name,
+                                   to_string(s.type), format_setting(s.default_value), s.description);
+      }
       return 0;
     }
     std::set<std::string> seen;

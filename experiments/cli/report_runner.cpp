@@ -1,4 +1,5 @@
 #include "experiments/cli/report_runner.hpp"
+#include "experiments/run/provenance.hpp"
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -7,9 +8,6 @@
 #include <iostream>
 #include <string>
 
-#ifndef TCBENCH_SOURCE_DIR
-#define TCBENCH_SOURCE_DIR "."
-#endif
 
 namespace tcb::cli {
 
@@ -17,7 +15,7 @@ int run_report(const std::filesystem::path& results_dir) {
   const char* python = "/usr/bin/python3";
   const char* env = std::getenv("TCBENCH_REPORT_SCRIPT");
   const std::string script =
-      env ? env : (std::filesystem::path(TCBENCH_SOURCE_DIR) / "report" / "make_report.py").string();
+      env ? env : (source_tree_dir() / "report" / "make_report.py").string();
   if (!std::filesystem::exists(python)) {
     std::cerr << "tcbench: report: " << python << " not found (install python3-matplotlib: scripts/setup)\n";
     return 2;

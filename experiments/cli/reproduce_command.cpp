@@ -10,11 +10,9 @@
 
 #include "experiments/cli/command.hpp"
 #include "experiments/cli/report_runner.hpp"
+#include "experiments/run/provenance.hpp"
 #include "experiments/sweep/sweep_runner.hpp"
 
-#ifndef TCBENCH_SOURCE_DIR
-#define TCBENCH_SOURCE_DIR "."
-#endif
 
 namespace tcb::cli {
 namespace {
@@ -33,7 +31,7 @@ class ReproduceCommand final : public Command {
   }
 
   int execute() override {
-    const auto dir = std::filesystem::path(TCBENCH_SOURCE_DIR) / "experiments" / "sweeps" / "paper";
+    const auto dir = source_tree_dir() / "experiments" / "sweeps" / "paper";
     std::vector<std::filesystem::path> files;
     for (const auto& entry : std::filesystem::directory_iterator(dir))
       if (entry.path().extension() == ".toml") files.push_back(entry.path());

@@ -39,7 +39,9 @@ class RunCommand final : public Command {
                     "How the budget was asked for, recorded in run.json (sweeps pass e.g. full/3)");
     app->add_option("--steps", m_steps, "Number of steps (default: the scene's)")->check(CLI::NonNegativeNumber);
     app->add_option("--seed", m_options.seed, "Seed, recorded in run.json")->capture_default_str();
-    app->add_option("--set", m_options.overrides, "Override a scene key, e.g. scene.dt=0.002 (repeatable)");
+    app->add_option("--set", m_options.overrides,
+                    "Override a scene key, e.g. scene.dt=0.002, or a method setting, e.g. method.every_nth.n=4 "
+                    "(repeatable; `tcbench list methods` lists the settings)");
     app->add_option("--record", m_options.record_every,
                     "Write a ParaView frame (DIR/frames/*.vtu, DIR/frames.pvd) every N steps")
         ->check(CLI::PositiveNumber);
@@ -53,17 +55,11 @@ class RunCommand final : public Command {
     if (m_steps >= 0) m_options.steps = m_steps;
     m_options.oracle = parse_oracle_schedule(m_oracle);
     if (app->count("--oracle-volume")) m_options.overlap = parse_oracle_schedule(m_overlap, "--oracle-volume");
-    if (app->count("--budget-ms")) m_options.budget = {BudgetSpec::Kind::WallMs, m_budget_ms};
-    if (app->count("--budget-work")) m_options.budget = {BudgetSpec::Kind::Work, static_cast<double>(m_budget_work)};
+    if (app->count("--budget-ms")) m_options.budget = {BudgetKind::WallMs, m_budget_ms};
+    if (app->count("--budget-work")) m_options.budget = {BudgetKind::Work, static_cast<double>(m_budget_work)};
     m_options.out_dir = m_out.empty() ? std::filesystem::path("results/runs") / (scene.name + "-" + m_options.method)
                                       : std::filesystem::path(m_out);
-    m_options.command_line = "tcbench run " + m_scene + " --method " + m_options.method;
-    if (app->count("--budget-ms")) m_options.command_line += fmt::format(" --budget-ms {}", m_budget_ms);
-    if (app->count("--budget-work")) m_options.command_line += fmt::format(" --budget-work {}", m_budget_work);
-    if (app->count("--oracle")) m_options.command_line += " --oracle " + m_oracle;
-    if (app->count("--oracle-volume")) m_options.command_line += " --oracle-volume " + m_overlap;
-    if (m_steps >= 0) m_options.command_line += fmt::format(" --steps {}", m_steps);
-    for (const auto& o : m_options.overrides) m_options.command_line += " --set " + o;
+    m_options.argv = argv;
     ProgressLine progress(fmt::format("{} [{}]", scene.name, m_options.method), !m_quiet && stderr_is_terminal());
     m_options.on_step = [&](std::int64_t done, std::int64_t total) { progress.update(done, total); };
     m_options.on_warning = [](const std::string& w) { std::cerr << "tcbench: warning: " << w << '\n'; };

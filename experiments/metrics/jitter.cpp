@@ -24,4 +24,8 @@ double JitterMeter::rms_m_per_s() const {
   return m_samples ? std::sqrt(m_sum_sq / static_cast<double>(m_samples)) : 0.0;
 }
 
+void JitterMeter::summarize(Json& summary) const {
+  summary["jitter"] = !m_enabled || m_samples == 0 ? Json(nullptr) : Json(rms_m_per_s());
+}
+
 }  // namespace tcb

@@ -1,8 +1,10 @@
 #include "experiments/metrics/latency.hpp"
 
+#include "experiments/metrics/distribution.hpp"
+
 namespace tcb {
 
-LatencyMeter::LatencyMeter(const World& world) {
+LatencyMeter::LatencyMeter(const World& world, std::int64_t oracle_every) : m_oracle_every(oracle_every) {
   for (const Body& b : world.bodies) {
     m_start.emplace_back(b.x_m.size(), -1);
     m_served.emplace_back(b.x_m.size(), 0);
@@ -31,6 +33,24 @@ void LatencyMeter::record_forces(std::int64_t step, const std::vector<std::pair<
     m_served[b][v] = 1;
     m_latencies.push_back(static_cast<double>(step - m_start[b][v]));
   }
+}
+
+void LatencyMeter::before_dynamics(StepContext& ctx) {
+  if (ctx.oracle) record_oracle(ctx.step, *ctx.oracle);
+  if (m_oracle_every == 1) record_forces(ctx.step, ctx.report.exact_points);
+}
+
+void LatencyMeter::summarize(Json& summary) const {
+  // Between sparse oracle steps a vertex can leave and re-enter unseen, which
+  // merges episodes and inflates latencies: only an every-step oracle measures it.
+  if (m_oracle_every > 1) note_unmeasured(summary, "latency_steps: needs --oracle every (sparse oracle steps merge episodes)");
+  if (m_oracle_every != 1) {
+    summary["latency_steps"] = nullptr;
+    return;
+  }
+  const Distribution l = tcb::summarize(m_latencies);
+  summary["latency_steps"] = m_latencies.empty() ? Json(nullptr) : Json{{"mean", l.mean}, {"p95", l.p95}, {"max", l.max}};
+  summary["unserved_penetrations"] = m_unserved;
 }
 
 }  // namespace tcb

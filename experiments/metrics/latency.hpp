@@ -1,6 +1,7 @@
 #pragma once
-/// Latency of collision response (CONTRACT.md summary.latency_steps; seed
-/// 000: a fast heavy sphere stays correct only with latency <= 2 frames).
+/// Latency of collision response (summary latency_steps {mean, p95, max} in
+/// steps, and unserved_penetrations; the paper: a fast heavy sphere stays
+/// correct only with latency <= 2 frames).
 ///
 /// Per vertex, an episode starts at the first oracle step that finds it truly
 /// inside another object; its latency is the number of steps from there to the
@@ -15,15 +16,19 @@
 #include <cstdint>
 #include <vector>
 
-#include "experiments/metrics/distribution.hpp"
+#include "experiments/metrics/meter.hpp"
 #include "oracle/inside_oracle.hpp"
 #include "sim/world/world.hpp"
 
 namespace tcb {
 
-class LatencyMeter {
+class LatencyMeter final : public Meter {
  public:
-  explicit LatencyMeter(const World& world);
+  /// `oracle_every`: the run's oracle schedule (latency needs every step: 1).
+  explicit LatencyMeter(const World& world, std::int64_t oracle_every = 1);
+  explicit LatencyMeter(const RunSetup& run) : LatencyMeter(run.world, run.oracle.every) {}
+  void before_dynamics(StepContext& ctx) override;
+  void summarize(Json& summary) const override;
   /// Call on steps where the oracle ran, with its frame.
   void record_oracle(std::int64_t step, const OracleFrame& frame);
   /// Call every step with the points given a depth-based force in it.
@@ -32,6 +37,7 @@ class LatencyMeter {
   std::int64_t unserved() const { return m_unserved; }
 
  private:
+  std::int64_t m_oracle_every;
   std::vector<std::vector<std::int64_t>> m_start;  // episode start step per vertex, -1 none
   std::vector<std::vector<char>> m_served;
   std::vector<double> m_latencies;

@@ -38,7 +38,7 @@ Fixture dog_pair() {
   }
   const auto mesh = std::make_shared<const TetMesh>(std::move(dog));
   Fixture f;
-  f.scene.dt_s = 1e-3;
+  f.scene.world.dt_s = 1e-3;
   for (int copy = 0; copy < 2; ++copy) {
     Body b;
     b.name = copy ? "dog_b" : "dog_a";
@@ -104,7 +104,7 @@ void BM_DogPair(benchmark::State& state) {
     return;
   }
   static Fixture f = dog_pair();
-  CollisionSettings settings = resolve_collision_settings(f.world, f.scene);
+  CollisionSettings settings = resolve_collision_settings(f.world, f.scene.collision, f.scene.world.dt_s);
   settings.detection.hash = state.range(0) == 0 ? HashFunction::Mixed : HashFunction::Paper;
   settings.detection.cell_size_m = average_edge_length(f.world) * static_cast<double>(state.range(1)) / 100.0;
   run_cycles(state, f, settings);
@@ -115,10 +115,10 @@ void BM_Plates20(benchmark::State& state) {
   static Fixture f = [] {
     Fixture g;
     g.scene = load_scene_file(resolve_scene("plates20", default_scene_dirs()));
-    g.world = build_world(g.scene);
+    g.world = build_world(g.scene.world);
     return g;
   }();
-  CollisionSettings settings = resolve_collision_settings(f.world, f.scene);
+  CollisionSettings settings = resolve_collision_settings(f.world, f.scene.collision, f.scene.world.dt_s);
   settings.detection.hash = state.range(0) == 0 ? HashFunction::Mixed : HashFunction::Paper;
   run_cycles(state, f, settings);
 }

@@ -59,7 +59,7 @@ World dog_pair() {
 
 World scene_world(int which) {
   if (which == 0) return dog_pair();
-  return build_world(load_scene_file(resolve_scene("plates20", default_scene_dirs())));
+  return build_world(load_scene_file(resolve_scene("plates20", default_scene_dirs())).world);
 }
 
 // The per-iteration deformation: a wave of 0.1 mm along x on the last body.

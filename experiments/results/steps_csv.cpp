@@ -2,84 +2,38 @@
 
 #include <fmt/format.h>
 
+#include <stdexcept>
+
 namespace tcb {
-namespace {
 
-// One table of (name, value): the header and every row come from it, so the
-// two cannot drift apart when a column is added.
-template <typename T>
-std::string text(const std::optional<T>& v) {
-  return v ? fmt::format("{}", *v) : std::string();  // not measured: an empty cell, never 0
-}
-template <typename T>
-std::string text(const T& v) {
-  return fmt::format("{}", v);
-}
-template <auto Member>
-std::string field(const StepRow& r) {
-  return text(r.*Member);
+StepRow::StepRow(const std::map<std::string, std::size_t, std::less<>>* index) : m_index(index) {
+  if (m_index) m_cells.resize(m_index->size());
 }
 
-struct Column {
-  const char* name;
-  std::string (*value)(const StepRow&);
-};
-
-const std::vector<Column>& table() {
-  static const std::vector<Column> columns = {
-      {"step", field<&StepRow::step>},
-      {"time_s", field<&StepRow::time_s>},
-      {"handling_ms", field<&StepRow::handling_ms>},
-      {"budget_ms", field<&StepRow::budget_ms>},
-      {"work_units", field<&StepRow::work_units>},
-      {"cycle", field<&StepRow::cycle>},
-      {"cycle_done", field<&StepRow::cycle_done>},
-      {"colliding_points", field<&StepRow::colliding_points>},
-      {"exact_forces", field<&StepRow::exact_forces>},
-      {"estimated_forces", field<&StepRow::estimated_forces>},
-      {"oracle_points", field<&StepRow::oracle_points>},
-      {"recall", field<&StepRow::recall>},
-      {"precision", field<&StepRow::precision>},
-      {"depth_err_mean", field<&StepRow::depth_err_mean>},
-      {"depth_err_max", field<&StepRow::depth_err_max>},
-      {"max_depth", field<&StepRow::max_depth>},
-      {"overlap_volume", field<&StepRow::overlap_volume>},
-      {"triangle_pairs", field<&StepRow::triangle_pairs>},
-      {"oracle_ms", field<&StepRow::oracle_ms>},
-      {"kinetic_energy", field<&StepRow::kinetic_energy>},
-      {"dynamics_ms", field<&StepRow::dynamics_ms>},
-      {"max_speed", field<&StepRow::max_speed>},
-      {"solver_iterations", field<&StepRow::solver_iterations>},
-      {"probe_force_x", field<&StepRow::probe_force_x>},
-      {"probe_force_y", field<&StepRow::probe_force_y>},
-      {"probe_force_z", field<&StepRow::probe_force_z>},
-  };
-  return columns;
+std::string& StepRow::cell(std::string_view column) {
+  if (m_index)
+    if (const auto it = m_index->find(column); it != m_index->end()) return m_cells[it->second];
+  throw std::logic_error("steps.csv: no column '" + std::string(column) + "' was declared");
 }
 
-}  // namespace
+void StepRow::set(std::string_view column, double value) { cell(column) = fmt::format("{}", value); }
+void StepRow::set(std::string_view column, std::int64_t value) { cell(column) = fmt::format("{}", value); }
 
-const std::vector<std::string>& StepsCsv::columns() {
-  static const std::vector<std::string> names = [] {
-    std::vector<std::string> n;
-    for (const Column& c : table()) n.emplace_back(c.name);
-    return n;
-  }();
-  return names;
-}
-
-StepsCsv::StepsCsv(const std::filesystem::path& path) : m_file(path) {
-  const auto& names = columns();
-  for (std::size_t i = 0; i < names.size(); ++i) m_file.stream() << (i ? "," : "") << names[i];
+StepsCsv::StepsCsv(const std::filesystem::path& path, std::vector<ColumnSpec> columns)
+    : m_file(path), m_columns(std::move(columns)) {
+  for (std::size_t i = 0; i < m_columns.size(); ++i) {
+    if (!m_index.emplace(m_columns[i].name, i).second)
+      throw std::logic_error("steps.csv: column '" + m_columns[i].name + "' declared twice");
+    m_file.stream() << (i ? "," : "") << m_columns[i].name;
+  }
   m_file.stream() << '\n';
 }
 
-void StepsCsv::write(const StepRow& r) {
-  const auto& columns = table();
+void StepsCsv::write(const StepRow& row) {
   std::string line;
-  for (std::size_t i = 0; i < columns.size(); ++i) {
+  for (std::size_t i = 0; i < row.cells().size(); ++i) {
     if (i) line += ',';
-    line += columns[i].value(r);
+    line += row.cells()[i];
   }
   line += '\n';
   m_file.stream() << line;

@@ -59,8 +59,8 @@ std::optional<double> summary_metric(const Json& run, const std::string& dotted)
 }
 
 void write_summary_csv(const std::filesystem::path& path, const std::vector<SummaryRow>& rows) {
-  const std::vector<std::string> fixed = {"run",    "scene", "method", "budget", "budget_kind", "budget_value",
-                                          "seed",   "overrides", "status", "steps", "wall_s"};
+  const std::vector<std::string> fixed = {"run",  "scene",        "method",    "method_label", "budget", "budget_kind",
+                                          "budget_value", "seed", "overrides", "status",       "steps",  "wall_s"};
   std::vector<std::string> metrics;  // in order of first appearance
   std::map<std::string, bool> known;
   std::vector<std::map<std::string, std::string>> cells(rows.size());
@@ -72,6 +72,7 @@ void write_summary_csv(const std::filesystem::path& path, const std::vector<Summ
     const Json& r = *rows[i].record;
     c["scene"] = r.value("scene", "");
     c["method"] = r.value("method", "");
+    c["method_label"] = r.value("method_label", c["method"]);
     c["budget"] = r["budget"].value("label", "");
     c["budget_kind"] = r["budget"].value("kind", "");
     c["budget_value"] = r["budget"]["value"].is_null() ? "" : r["budget"]["value"].dump();

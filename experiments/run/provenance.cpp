@@ -57,4 +57,6 @@ std::string version_line() {
          (generated::kGitDirty ? ", dirty" : "") + ", " + generated::kBuildType + ")";
 }
 
+std::filesystem::path source_tree_dir() { return TCBENCH_SOURCE_DIR; }
+
 }  // namespace tcb

@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <filesystem>
 #include <string>
 
 namespace tcb {
@@ -17,5 +18,8 @@ nlohmann::ordered_json machine_info();
 std::string utc_timestamp();
 /// "tcbench 0.1.0 (abc1234, dirty)"
 std::string version_line();
+/// The source tree tcbench was built from: where it finds the committed
+/// scenes, the paper's sweeps and the report script.
+std::filesystem::path source_tree_dir();
 
 }  // namespace tcb

@@ -10,13 +10,12 @@
 #include <sstream>
 
 #include "baselines/registry.hpp"
+#include "experiments/run/provenance.hpp"
 #include "sim/io/atomic_file.hpp"
+#include "experiments/scene/method_settings_reader.hpp"
 #include "experiments/scene/toml_table_reader.hpp"
 #include "sim/io/input_error.hpp"
 
-#ifndef TCBENCH_SOURCE_DIR
-#define TCBENCH_SOURCE_DIR "."
-#endif
 
 namespace tcb {
 namespace {
@@ -178,8 +177,6 @@ void apply_override(toml::table& root, const std::string& assignment, Origins& o
 
 SceneDesc parse_scene(const std::string& text, const std::filesystem::path& path,
                       const std::vector<std::string>& overrides) {
-  std::vector<std::string> method_names;
-  for (const MethodInfo& m : method_registry()) method_names.push_back(m.name);
   Origins file{path.string(), {}};
   toml::table root;
   try {
@@ -191,15 +188,18 @@ SceneDesc parse_scene(const std::string& text, const std::filesystem::path& path
 
   SceneDesc scene;
   scene.path = path;
+  scene.world.path = path;
   scene.name = path.stem().string();
   TableReader top(root, "scene file", file);
+  for (const MethodInfo& m : method_registry())  // the form before [method.NAME]
+    if (top.node(m.name)) top.fail(m.name, "a method's settings go in [method." + m.name + "]");
   if (const toml::table* s = top.table("scene")) {
     TableReader r(*s, "scene", file);
     scene.name = r.string("name").value_or(scene.name);
     r.string("description");
-    scene.dt_s = r.positive("dt", scene.dt_s);
+    scene.world.dt_s = r.positive("dt", scene.world.dt_s);
     scene.steps = r.integer("steps", 0, std::int64_t(1) << 40).value_or(scene.steps);
-    scene.gravity_m_per_s2 = r.vec3("gravity").value_or(scene.gravity_m_per_s2);
+    scene.world.gravity_m_per_s2 = r.vec3("gravity").value_or(scene.world.gravity_m_per_s2);
     scene.max_speed_m_per_s = r.positive("max_speed", scene.max_speed_m_per_s);
     r.finish();
   }
@@ -209,7 +209,7 @@ SceneDesc parse_scene(const std::string& text, const std::filesystem::path& path
     ground.height_m = r.number("height").value_or(0.0);
     ground.friction = r.non_negative("friction", ground.friction);
     r.finish();
-    scene.ground = ground;
+    scene.world.ground = ground;
   }
   if (const toml::table* c = top.table("collision")) {
     TableReader r(*c, "collision", file);
@@ -223,8 +223,9 @@ SceneDesc parse_scene(const std::string& text, const std::filesystem::path& path
       }
     }
     if (const auto hash = r.string("hash")) {
-      if (*hash != "mixed" && *hash != "paper") r.fail("hash", "must be \"mixed\" or \"paper\"");
-      scene.collision.hash = *hash;
+      if (*hash == "mixed") scene.collision.hash = HashFunction::Mixed;
+      else if (*hash == "paper") scene.collision.hash = HashFunction::Paper;
+      else r.fail("hash", "must be \"mixed\" or \"paper\"");
     }
     scene.collision.table_size =
         static_cast<std::size_t>(r.integer("table_size", 0, std::int64_t(1) << 32).value_or(0));
@@ -263,17 +264,18 @@ SceneDesc parse_scene(const std::string& text, const std::filesystem::path& path
     }
     r.finish();
   }
-  for (const std::string& method : method_names) {
-    const toml::table* t = top.table(method);
-    if (!t) continue;
-    for (auto&& [key, node] : *t) {
-      const Where w = where_of(node, file);
-      MethodSetting setting{0.0, w.line > 0 ? w.file + ":" + std::to_string(w.line) : w.file};
-      if (node.is_number()) setting.value = *node.value<double>();
-      else if (node.is_boolean()) setting.value = *node.value<bool>();
-      else if (node.is_string()) setting.value = *node.value<std::string>();
-      else throw InputError(w.file, w.line, method + "." + std::string(key.str()) + ": must be a number, boolean or string");
-      scene.methods[method][std::string(key.str())] = setting;
+  if (const toml::table* methods = top.table("method")) {
+    TableReader all(*methods, "method", file);
+    for (auto&& [key, node] : *methods) {
+      const std::string name(key.str());
+      const MethodInfo* info = nullptr;
+      for (const MethodInfo& m : method_registry())
+        if (m.name == name) info = &m;
+      if (!info) all.fail(name, "no method of that name (`tcbench list methods`)");
+      const toml::table* t = all.table(name);
+      TableReader r(*t, "method." + name, file);
+      scene.methods[name] = read_method_settings(r, *info);
+      r.finish();
     }
   }
   if (const toml::node* objects = top.node("object")) {
@@ -285,11 +287,11 @@ SceneDesc parse_scene(const std::string& text, const std::filesystem::path& path
       ObjectDesc o = read_object(*(*array)[i].as_table(), i, path, file);
       if (!names.insert(o.name).second)
         throw InputError(file.file, o.source_line, "two objects are named '" + o.name + "'");
-      scene.objects.push_back(std::move(o));
+      scene.world.objects.push_back(std::move(o));
     }
   }
   top.finish();
-  if (scene.objects.empty()) throw InputError(file.file, 0, "the scene has no [[object]]");
+  if (scene.world.objects.empty()) throw InputError(file.file, 0, "the scene has no [[object]]");
   return scene;
 }
 
@@ -304,7 +306,7 @@ std::vector<std::filesystem::path> default_scene_dirs() {
     for (std::string dir; std::getline(in, dir, ':');)
       if (!dir.empty()) dirs.emplace_back(dir);
   }
-  dirs.emplace_back(std::filesystem::path(TCBENCH_SOURCE_DIR) / "experiments" / "scenes");
+  dirs.emplace_back(source_tree_dir() / "experiments" / "scenes");
   return dirs;
 }
 

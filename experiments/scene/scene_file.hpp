@@ -1,5 +1,5 @@
 #pragma once
-/// Scene files (TOML, CONTRACT.md "Scene files") into SceneDesc.
+/// Scene files (TOML, docs/contract.md "Scene files") into SceneDesc.
 ///
 /// Strict: an unknown key, a value of the wrong type or out of range is an
 /// InputError naming the file, the line and the key. Paths in the file are
@@ -9,7 +9,7 @@
 ///   object.plate.material.youngs_modulus=2e5   an object by name ...
 ///   object.0.scale=2                       ... or by index
 ///   ground.height=0.1                      creates [ground] if absent
-///   every_nth.n=3                          a method's setting (its own table)
+///   method.every_nth.n=3                   a method's setting ([method.every_nth])
 /// The value is read as TOML (numbers, booleans, arrays, "strings"); a bare
 /// word that is not TOML is taken as a string (model=mass_spring).
 
@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/world/scene.hpp"
+#include "experiments/scene/scene_desc.hpp"
 
 namespace tcb {
 

@@ -8,6 +8,8 @@
 #include "baselines/registry.hpp"
 #include "experiments/run/run_scene.hpp"
 #include "experiments/scene/scene_file.hpp"
+#include "experiments/run/provenance.hpp"
+#include "experiments/scene/method_settings_reader.hpp"
 #include "experiments/scene/toml_table_reader.hpp"
 
 namespace tcb {
@@ -38,15 +40,18 @@ std::string id_part(const std::string& text) {
 std::optional<SweepBudget> parse_sweep_budget(const std::string& label) {
   SweepBudget b;
   b.label = label;
-  std::optional<double> v;
-  if (label == "none") return b;
-  if (label.rfind("ms:", 0) == 0) b.kind = SweepBudget::Kind::Ms, v = number_after(label, 3);
-  else if (label.rfind("work:", 0) == 0) b.kind = SweepBudget::Kind::Work, v = number_after(label, 5);
-  else if (label.rfind("full-work/", 0) == 0) b.kind = SweepBudget::Kind::RelativeWork, v = number_after(label, 10);
-  else if (label.rfind("full/", 0) == 0) b.kind = SweepBudget::Kind::RelativeMs, v = number_after(label, 5);
-  if (!v || (b.relative() && !(*v > 0.0)) || (b.kind == SweepBudget::Kind::Work && *v != std::floor(*v)))
-    return std::nullopt;
-  b.value = *v;
+  const auto relative = [&](std::size_t prefix, SweepBudget::Relative kind) -> std::optional<SweepBudget> {
+    const auto k = number_after(label, prefix);
+    if (!k || !(*k > 0.0)) return std::nullopt;
+    b.relative = kind;
+    b.divisor = *k;
+    return b;
+  };
+  if (label.rfind("full-work/", 0) == 0) return relative(10, SweepBudget::Relative::FullWork);
+  if (label.rfind("full/", 0) == 0) return relative(5, SweepBudget::Relative::FullMs);
+  const auto absolute = BudgetSpec::parse(label);
+  if (!absolute) return std::nullopt;
+  b.absolute = *absolute;
   return b;
 }
 
@@ -66,7 +71,7 @@ SweepPlan load_sweep_plan(const std::filesystem::path& path) {
     if (!list || list->empty()) r.fail(key, "must list at least one entry");
     return *list;
   };
-  const std::vector<std::string> scenes = need("scenes"), methods = need("methods"), budget_labels = need("budgets");
+  const std::vector<std::string> scenes = need("scenes"), budget_labels = need("budgets");
   for (const auto& scene : scenes) {
     try {
       resolve_scene(scene, default_scene_dirs());
@@ -75,38 +80,55 @@ SweepPlan load_sweep_plan(const std::filesystem::path& path) {
     }
   }
   std::map<std::string, bool> uses_budget;
-  // A method entry is a registry name, optionally with its settings:
-  // "every_nth(n=4)" runs every_nth with --set every_nth.n=4.
+  // A method entry is a registry name, or a table { name = "every_nth", n = 4 }
+  // whose other keys are the method's settings, checked against its schema
+  // exactly as a scene's [method.every_nth] table is.
   struct MethodEntry {
     std::string name, id;
     std::vector<std::string> sets;
   };
   std::vector<MethodEntry> entries;
-  for (const auto& m : methods) {
-    MethodEntry e{m, m, {}};
-    if (const auto open = m.find('('); open != std::string::npos) {
-      if (m.back() != ')') r.fail("methods", "'" + m + "': expected name(key=value,...)");
-      e.name = m.substr(0, open);
-      e.id = e.name;
-      std::stringstream settings(m.substr(open + 1, m.size() - open - 2));
-      for (std::string kv; std::getline(settings, kv, ',');) {
-        if (kv.find('=') == std::string::npos) r.fail("methods", "'" + m + "': expected name(key=value,...)");
-        e.sets.push_back(e.name + "." + kv);
+  const toml::node* methods = r.node("methods");
+  const toml::array* method_list = methods ? methods->as_array() : nullptr;
+  if (!method_list || method_list->empty())
+    r.fail("methods", "must list at least one method: a name or { name = \"NAME\", setting = value }");
+  for (std::size_t i = 0; i < method_list->size(); ++i) {
+    const toml::node& entry = (*method_list)[i];
+    MethodEntry e;
+    const MethodInfo* info = nullptr;
+    const auto lookup = [&](const std::string& name) {
+      for (const MethodInfo& m : method_registry())
+        if (m.name == name) return &m;
+      r.fail("methods", "unknown method '" + name + "' (see `tcbench list methods`)");
+    };
+    if (entry.is_string()) {
+      e.name = e.id = *entry.value<std::string>();
+      info = lookup(e.name);
+    } else if (const toml::table* t = entry.as_table()) {
+      TableReader mr(*t, "methods[" + std::to_string(i) + "]", origins);
+      const auto name = mr.string("name");
+      if (!name) mr.fail("name", "names the method: { name = \"every_nth\", n = 4 }");
+      e.name = e.id = *name;
+      info = lookup(e.name);
+      const MethodSettings settings = read_method_settings(mr, *info);
+      mr.finish();
+      for (const SettingSpec& spec : info->settings) {  // only what the entry wrote, in schema order
+        if (!t->contains(spec.name)) continue;
+        const std::string value = format_setting(settings.values().at(spec.name));
+        e.sets.push_back("method." + e.name + "." + spec.name + "=" + value);
         e.id += '_';
-        e.id += id_part(kv);
+        e.id += id_part(spec.name + "=" + value);
       }
+    } else {
+      r.fail("methods", "each entry is a method name or { name = \"NAME\", setting = value }");
     }
-    const auto& registry = method_registry();
-    const auto it =
-        std::find_if(registry.begin(), registry.end(), [&](const MethodInfo& i) { return i.name == e.name; });
-    if (it == registry.end()) r.fail("methods", "unknown method '" + e.name + "' (see `tcbench list methods`)");
-    uses_budget[e.id] = it->uses_budget;
+    uses_budget[e.id] = info->uses_budget;
     entries.push_back(e);
   }
   std::vector<SweepBudget> budgets;
   for (const auto& label : budget_labels) {
     const auto b = parse_sweep_budget(label);
-    if (!b) r.fail("budgets", "'" + label + "' is not none, ms:X, work:N, full/K or full-work/K");
+    if (!b) r.fail("budgets", "'" + label + "' is not none, ms:X, work:N (whole), full/K or full-work/K (K > 0)");
     budgets.push_back(*b);
   }
   std::vector<std::uint64_t> seeds{0};
@@ -152,10 +174,16 @@ SweepPlan load_sweep_plan(const std::filesystem::path& path) {
       sets.push_back(set);
     }
   }
+  if (const auto figures = r.string_list("figures")) {
+    for (const std::string& figure : *figures)
+      if (!std::filesystem::exists(source_tree_dir() / "report" / "tcbench_report" / "figures" / (figure + ".py")))
+        r.fail("figures", "no report figure '" + figure + "' (report/tcbench_report/figures/" + figure + ".py)");
+    plan.figures = *figures;
+  }
   r.finish();
 
   const bool any_relative =
-      std::any_of(budgets.begin(), budgets.end(), [](const SweepBudget& b) { return b.relative(); });
+      std::any_of(budgets.begin(), budgets.end(), [](const SweepBudget& b) { return b.is_relative(); });
   std::map<std::string, std::size_t> seen;
   for (const auto& scene : scenes)
     for (std::size_t s = 0; s < sets.size(); ++s)
@@ -164,9 +192,16 @@ SweepPlan load_sweep_plan(const std::filesystem::path& path) {
         const std::string tail =
             fmt::format("-s{}", seed) + (sets.size() > 1 ? fmt::format("-v{}", s) : std::string());
         const auto add = [&](const MethodEntry& method, const SweepBudget& budget, const std::string& reference) {
-          SweepRun run{id_part(scene) + "-" + method.id + "-" + id_part(budget.label) + tail, scene, method.name, budget,
-                       seed, s, sets[s], group, reference};
-          run.sets.insert(run.sets.end(), method.sets.begin(), method.sets.end());
+          SweepRun run{id_part(scene) + "-" + method.id + "-" + id_part(budget.label) + tail,
+                       scene,
+                       method.name,
+                       method.sets,
+                       budget,
+                       seed,
+                       s,
+                       sets[s],
+                       group,
+                       reference};
           if (seen.count(run.id)) return;
           seen[run.id] = plan.runs.size();
           plan.runs.push_back(run);
@@ -179,7 +214,7 @@ SweepPlan load_sweep_plan(const std::filesystem::path& path) {
               add(method, SweepBudget{}, "");
               continue;
             }
-            add(method, budget, budget.relative() ? reference_id : "");
+            add(method, budget, budget.is_relative() ? reference_id : "");
           }
       }
   return plan;

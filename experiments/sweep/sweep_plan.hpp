@@ -4,8 +4,10 @@
 ///   [sweep]
 ///   description = "..."                    # optional
 ///   scenes  = ["plates20", "cube_drop"]    # names or paths, as `tcbench run` takes them
-///   methods = ["full", "interruptible", "every_nth(n=4)"]  # registry names, optionally
-///                                          # with settings: --set every_nth.n=4 for that run
+///   methods = ["full", "interruptible", { name = "every_nth", n = 4 }]
+///                                          # registry names, or a table with the method's
+///                                          # settings under their [method.NAME] names
+///                                          # (--set method.every_nth.n=4 for that run)
 ///   budgets = ["none", "ms:4.5", "work:20000", "full/3", "full-work/3"]
 ///   seeds   = [0]                          # optional, default [0]
 ///   steps   = 200                          # optional: every run's length
@@ -14,8 +16,12 @@
 ///   oracle  = "every:10"                   # optional, default "off"
 ///   oracle_volume = "off"                  # optional, default: with the oracle
 ///   sets    = [[], ["scene.dt=0.002"]]     # optional variants of --set, default [[]]
+///   figures = ["jitter", "animation"]      # optional: the report's figures these runs feed
+///                                          # (report/tcbench_report/figures/<name>.py; the
+///                                          # generic figures take every run anyway)
 ///
-/// Budgets: "none"; absolute "ms:X" (wall clock) or "work:N" (work units);
+/// Budgets: "none"; absolute "ms:X" (wall clock) or "work:N" (work units), as
+/// BudgetSpec (method/handler/budget.hpp) parses them;
 /// relative to the scene's full handling cost, measured in the same sweep by a
 /// reference run (method full, budget none, same scene, seed and set):
 /// "full/K" is full's median handling_ms divided by K, "full-work/K" its mean
@@ -27,17 +33,22 @@
 /// and every run lands in exactly one shard.
 
 #include <filesystem>
+
+#include "method/handler/budget.hpp"
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace tcb {
 
+/// A sweep's budget: an absolute BudgetSpec, or one relative to the
+/// reference run's cost, which only the sweep runner can resolve.
 struct SweepBudget {
-  enum class Kind { None, Ms, Work, RelativeMs, RelativeWork } kind = Kind::None;
-  double value = 0.0;  ///< ms, work units, or the divisor K
+  enum class Relative { No, FullMs, FullWork } relative = Relative::No;
+  BudgetSpec absolute;   ///< when not relative
+  double divisor = 1.0;  ///< K of full/K or full-work/K
   std::string label = "none";  ///< as written: "none", "ms:4.5", "full/3", ...
-  bool relative() const { return kind == Kind::RelativeMs || kind == Kind::RelativeWork; }
+  bool is_relative() const { return relative != Relative::No; }
 };
 
 /// Parses one budget label; std::nullopt when malformed.
@@ -46,10 +57,11 @@ std::optional<SweepBudget> parse_sweep_budget(const std::string& label);
 struct SweepRun {
   std::string id;  ///< unique, usable as a directory name
   std::string scene, method;
+  std::vector<std::string> method_sets;  ///< the method's settings as --set method.NAME.KEY=VALUE
   SweepBudget budget;
   std::uint64_t seed = 0;
   std::size_t set_index = 0;
-  std::vector<std::string> sets;
+  std::vector<std::string> sets;  ///< the scene variant's --set strings
   std::size_t group = 0;        ///< index of its (scene, set, seed) group
   std::string reference_id;     ///< for relative budgets: the run whose cost they divide
 };
@@ -61,6 +73,7 @@ struct SweepPlan {
   int record = 0;  ///< --record N for every run (0: none)
   std::string oracle = "off";
   std::optional<std::string> oracle_volume;
+  std::vector<std::string> figures;  ///< the report figures the runs feed
   std::vector<SweepRun> runs;  ///< references before the runs that need them
   std::size_t groups = 0;
 };

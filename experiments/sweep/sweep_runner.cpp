@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <deque>
@@ -23,24 +24,26 @@ namespace fs = std::filesystem;
 // has no usable figure.
 std::vector<std::string> budget_args(const SweepRun& run, const fs::path& runs_dir, std::string& error) {
   const SweepBudget& b = run.budget;
-  switch (b.kind) {
-    case SweepBudget::Kind::None: return {};
-    case SweepBudget::Kind::Ms: return {"--budget-ms", fmt::format("{}", b.value)};
-    case SweepBudget::Kind::Work: return {"--budget-work", fmt::format("{}", static_cast<std::uint64_t>(b.value))};
-    default: break;
+  if (!b.is_relative()) {
+    switch (b.absolute.kind) {
+      case BudgetKind::None: return {};
+      case BudgetKind::WallMs: return {"--budget-ms", fmt::format("{}", b.absolute.value)};
+      case BudgetKind::Work:
+        return {"--budget-work", fmt::format("{}", static_cast<std::uint64_t>(b.absolute.value))};
+    }
   }
   const auto reference = read_complete_run(runs_dir / run.reference_id);
   if (!reference || (*reference)["status"] != "ok") {
     error = "its reference run " + run.reference_id + " did not complete";
     return {};
   }
-  if (b.kind == SweepBudget::Kind::RelativeMs) {
+  if (b.relative == SweepBudget::Relative::FullMs) {
     const auto p50 = summary_metric(*reference, "handling_ms.p50");
     if (!p50) {
       error = "reference has no handling_ms.p50";
       return {};
     }
-    return {"--budget-ms", fmt::format("{:.6g}", *p50 / b.value)};
+    return {"--budget-ms", fmt::format("{:.6g}", *p50 / b.divisor)};
   }
   const auto total = summary_metric(*reference, "work_units_total");
   const double steps = (*reference)["steps"].get<double>();
@@ -48,7 +51,7 @@ std::vector<std::string> budget_args(const SweepRun& run, const fs::path& runs_d
     error = "reference has no work_units_total";
     return {};
   }
-  const auto per_step = static_cast<std::uint64_t>(std::max(1.0, std::floor(*total / steps / b.value)));
+  const auto per_step = static_cast<std::uint64_t>(std::max(1.0, std::floor(*total / steps / b.divisor)));
   return {"--budget-work", fmt::format("{}", per_step)};
 }
 
@@ -63,6 +66,7 @@ pid_t start(const SweepPlan& plan, const SweepRun& run, const SweepOptions& opti
   if (steps) argv.insert(argv.end(), {"--steps", std::to_string(*steps)});
   if (plan.record > 0) argv.insert(argv.end(), {"--record", std::to_string(plan.record)});
   for (const auto& s : run.sets) argv.insert(argv.end(), {"--set", s});
+  for (const auto& s : run.method_sets) argv.insert(argv.end(), {"--set", s});
   const std::string log = (dir / "log.txt").string();
   const pid_t pid = fork();
   if (pid < 0) throw std::runtime_error("fork failed");
@@ -80,6 +84,18 @@ pid_t start(const SweepPlan& plan, const SweepRun& run, const SweepOptions& opti
     _exit(127);
   }
   return pid;
+}
+
+// DIR/sweep.json: what the report needs of the plan (which figures its runs feed).
+void write_sweep_json(const SweepPlan& plan, const fs::path& out_dir) {
+  nlohmann::ordered_json sweep;
+  sweep["schema"] = "tcbench.sweep/1";
+  sweep["file"] = plan.file.string();
+  sweep["description"] = plan.description;
+  sweep["figures"] = plan.figures;
+  sweep["runs"] = nlohmann::ordered_json::array();
+  for (const SweepRun& run : plan.runs) sweep["runs"].push_back("runs/" + run.id);
+  write_file_atomically(out_dir / "sweep.json", sweep.dump(2) + "\n");
 }
 
 }  // namespace
@@ -162,6 +178,7 @@ SweepOutcome run_sweep(const SweepPlan& plan, const SweepOptions& options) {
     rows.push_back(std::move(row));
   }
   write_summary_csv(options.out_dir / "summary.csv", rows);
+  write_sweep_json(plan, options.out_dir);
   return outcome;
 }
 

@@ -1,11 +1,70 @@
 #include "method/handler/budget.hpp"
 
+#include <cmath>
+
+#include <fmt/format.h>
+
 namespace tcb {
 
 ClockMs steady_clock_ms() {
   return [] {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
   };
+}
+
+namespace {
+
+// The number after a prefix: finite, >= 0, and nothing after it.
+std::optional<double> number_after(const std::string& text, std::size_t prefix) {
+  if (text.size() <= prefix) return std::nullopt;
+  try {
+    std::size_t used = 0;
+    const double v = std::stod(text.substr(prefix), &used);
+    if (used == text.size() - prefix && std::isfinite(v) && v >= 0.0) return v;
+  } catch (const std::exception&) {
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<BudgetSpec> BudgetSpec::parse(const std::string& text) {
+  if (text == "none") return BudgetSpec{};
+  if (text.rfind("ms:", 0) == 0) {
+    const auto v = number_after(text, 3);
+    if (v) return BudgetSpec{BudgetKind::WallMs, *v};
+  } else if (text.rfind("work:", 0) == 0) {
+    const auto v = number_after(text, 5);
+    if (v && *v == std::floor(*v) && *v < 1.8e19) return BudgetSpec{BudgetKind::Work, *v};
+  }
+  return std::nullopt;
+}
+
+std::string BudgetSpec::label() const {
+  switch (kind) {
+    case BudgetKind::WallMs: return fmt::format("ms:{}", value);
+    case BudgetKind::Work: return fmt::format("work:{}", static_cast<std::uint64_t>(value));
+    case BudgetKind::None: break;
+  }
+  return "none";
+}
+
+std::string BudgetSpec::kind_name() const {
+  switch (kind) {
+    case BudgetKind::WallMs: return "wall_ms";
+    case BudgetKind::Work: return "work";
+    case BudgetKind::None: break;
+  }
+  return "none";
+}
+
+Budget BudgetSpec::start() const {
+  switch (kind) {
+    case BudgetKind::WallMs: return Budget::wall_ms(value);
+    case BudgetKind::Work: return Budget::work_units(static_cast<std::uint64_t>(value));
+    case BudgetKind::None: break;
+  }
+  return Budget::unlimited();
 }
 
 }  // namespace tcb

@@ -14,6 +14,8 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <optional>
+#include <string>
 
 namespace tcb {
 
@@ -21,9 +23,11 @@ namespace tcb {
 using ClockMs = std::function<double()>;
 ClockMs steady_clock_ms();
 
+enum class BudgetKind { None, WallMs, Work };
+
 class Budget {
  public:
-  enum class Kind { None, WallMs, Work };
+  using Kind = BudgetKind;
 
   static Budget unlimited() { return Budget(Kind::None, 0.0, {}); }
   static Budget wall_ms(double budget_ms, ClockMs clock = steady_clock_ms()) {
@@ -53,6 +57,25 @@ class Budget {
   ClockMs m_clock;
   double m_start_ms = 0.0;
   std::uint64_t m_spent = 0;
+};
+
+/// A budget as asked for, before any step: its kind and value, its one text
+/// form, and the Budget each step starts from. The text forms are "none",
+/// "ms:X" (X >= 0 milliseconds of wall clock) and "work:N" (N whole work
+/// units); they name budgets in sweeps, thresholds, summary.csv and run.json.
+struct BudgetSpec {
+  BudgetKind kind = BudgetKind::None;
+  double value = 0.0;  ///< milliseconds, or work units (a whole number)
+
+  /// std::nullopt for anything but the three forms above (negative, not
+  /// finite, a fractional work count, trailing text).
+  static std::optional<BudgetSpec> parse(const std::string& text);
+  /// The text form; parse(label()) gives the same spec back.
+  std::string label() const;
+  /// "none", "wall_ms" or "work": run.json's budget.kind.
+  std::string kind_name() const;
+  /// A fresh budget for one step.
+  Budget start() const;
 };
 
 }  // namespace tcb

@@ -2,18 +2,22 @@
 /// The interface of every collision handling method: the paper's
 /// interruptible method and every baseline (ARCHITECTURE.md).
 ///
-/// step() reads the world's current positions and velocities and adds contact
-/// forces into Body::contact_force_n; the run loop times it (handling_ms) and
-/// then integrates. init() is not timed.
+/// init() receives the collision settings the run resolved once for this
+/// world (collision_settings.hpp; their warnings are the run's to record) and
+/// is not timed. step() reads the world's current positions and velocities
+/// and adds contact forces into Body::contact_force_n; the run loop times it
+/// (handling_ms) and then integrates. A method's own settings are handed to
+/// its constructor, typed and checked (method_settings.hpp, baselines/registry.cpp).
+///
+/// Most methods schedule the shared collision cycle differently: derive from
+/// CycleHandler (cycle_handler.hpp) rather than from this interface.
 
 #include <cstdint>
-#include <string>
-#include <string_view>
 #include <vector>
 
 #include "method/handler/budget.hpp"
 #include "method/handler/contact.hpp"
-#include "sim/world/scene.hpp"
+#include "method/handler/collision_settings.hpp"
 
 namespace tcb {
 
@@ -33,13 +37,10 @@ struct StepReport {
 class CollisionHandler {
  public:
   virtual ~CollisionHandler() = default;
-  virtual std::string_view name() const = 0;
-  virtual void init(const World& world, const SceneDesc& scene) = 0;
+  virtual void init(const World& world, const CollisionSettings& settings) = 0;
   virtual StepReport step(World& world, Budget& budget) = 0;
   /// The colliding points the method holds after the last step.
   virtual const std::vector<Contact>& contacts() const = 0;
-  /// Doubtful settings found by init(), in words; recorded with the run.
-  virtual std::vector<std::string> warnings() const { return {}; }
 };
 
 }  // namespace tcb

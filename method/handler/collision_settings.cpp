@@ -16,18 +16,14 @@ double average_edge_length(const World& world) {
   return count ? sum / static_cast<double>(count) : 1.0;
 }
 
-CollisionSettings resolve_collision_settings(const World& world, const SceneDesc& scene) {
-  const CollisionDesc& desc = scene.collision;
-  const std::string file = scene.path.empty() ? std::string("scene") : scene.path.string();
+CollisionSettings resolve_collision_settings(const World& world, const CollisionDesc& desc, double dt_s,
+                                             const std::string& file) {
   CollisionSettings s;
   s.detection.cell_size_m = desc.cell_size_m.value_or(average_edge_length(world));
   if (!(s.detection.cell_size_m > 0.0)) s.detection.cell_size_m = 1.0;  // a world of points only
   s.detection.table_size = desc.table_size;
-  if (desc.hash == "mixed") s.detection.hash = HashFunction::Mixed;
-  else if (desc.hash == "paper") s.detection.hash = HashFunction::Paper;
-  else throw InputError(file, 0, "collision.hash must be \"mixed\" or \"paper\", not \"" + desc.hash + "\"");
-
-  s.dt_s = scene.dt_s;
+  s.detection.hash = desc.hash;
+  s.dt_s = dt_s;
   s.body_count = world.bodies.size();
   const ResponseParams defaults{desc.response_stiffness_n_per_m, desc.damping_n_s_per_m, desc.friction};
   s.pair_response.assign(s.body_count * s.body_count, defaults);
@@ -72,14 +68,14 @@ CollisionSettings resolve_collision_settings(const World& world, const SceneDesc
                                                                      : std::max(lightest[a], lightest[b]))
                            : 0.0;
       if (m == 0.0) continue;
-      const double bound = 4.0 * m / (scene.dt_s * scene.dt_s);
+      const double bound = 4.0 * m / (dt_s * dt_s);
       const double ratio = s.response(a, b).stiffness_n_per_m / bound;
       if (ratio > 1.0 && ratio > worst_ratio) {
         worst_ratio = ratio;
         worst = fmt::format(
             "response stiffness {:.4g} N/m between '{}' and '{}' exceeds the explicit stability bound 4 m / dt^2 = "
             "{:.4g} N/m of their lightest vertex ({:.3g} kg at dt {:.3g} s): contacts there may chatter or explode",
-            s.response(a, b).stiffness_n_per_m, world.bodies[a].name, world.bodies[b].name, bound, m, scene.dt_s);
+            s.response(a, b).stiffness_n_per_m, world.bodies[a].name, world.bodies[b].name, bound, m, dt_s);
       }
     }
   if (!worst.empty()) s.warnings.push_back(worst);

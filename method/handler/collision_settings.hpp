@@ -1,18 +1,40 @@
 #pragma once
-/// The scene's [collision] table resolved against a built world: the hash's
-/// cell size ("auto" = average edge length of all bodies at their current
-/// positions), table size, hash function, and the response parameters of
-/// every body pair ([collision] defaults, overridden by [[collision.pair]]
+/// Collision handling's configuration: the scene's [collision] table as
+/// plain data (CollisionDesc), and the same resolved once per run against the
+/// built world (CollisionSettings), which every handler's init() receives:
+/// the hash's cell size ("auto" = average edge length of all bodies at their
+/// current positions), table size, hash function, and the response parameters
+/// of every body pair ([collision] defaults, overridden by [[collision.pair]]
 /// entries that name bodies or the objects they were stacked from).
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "method/detection/tet_hash_detection.hpp"
 #include "method/response/penalty_response.hpp"
-#include "sim/world/scene.hpp"
+#include "sim/world/world.hpp"
 
 namespace tcb {
+
+/// Response parameters for one pair of objects ([[collision.pair]]); a name
+/// matches a body or the object a stack was made from.
+struct CollisionPairDesc {
+  std::string a, b;
+  std::optional<double> stiffness_n_per_m, damping_n_s_per_m, friction;
+  int source_line = 0;
+};
+
+/// The [collision] table as plain data.
+struct CollisionDesc {
+  std::optional<double> cell_size_m;  ///< nullopt = "auto" (average edge length)
+  HashFunction hash = HashFunction::Mixed;  ///< "mixed", or "paper" (Teschner et al. 2003)
+  std::size_t table_size = 0;         ///< 0 = automatic (a prime above twice the tet count)
+  double response_stiffness_n_per_m = 1.0e4;
+  double damping_n_s_per_m = 0.0;
+  double friction = 0.3;
+  std::vector<CollisionPairDesc> pairs;
+};
 
 struct CollisionSettings {
   DetectionSettings detection;
@@ -29,7 +51,9 @@ struct CollisionSettings {
 /// Average length of all tet edges of all bodies (m).
 double average_edge_length(const World& world);
 
-/// Throws InputError when a pair names no body or the hash is unknown.
-CollisionSettings resolve_collision_settings(const World& world, const SceneDesc& scene);
+/// Resolves `desc` for `world` stepped with dt_s. InputError naming `file` and
+/// the pair's line when a [[collision.pair]] names no body.
+CollisionSettings resolve_collision_settings(const World& world, const CollisionDesc& desc, double dt_s,
+                                             const std::string& file = "scene");
 
 }  // namespace tcb

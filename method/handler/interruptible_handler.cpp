@@ -28,12 +28,12 @@ std::optional<InterruptibleHandler::StaleForce> InterruptibleHandler::stale_forc
   const Vec3 offset = world.bodies[object].x_m[vertex] - tet_point_m(world, now);
   now.depth_m = t.contact.depth_m - (offset - t.offset_m).dot(now.direction);
   if (!(now.depth_m > 0.0)) return std::nullopt;  // tracked out of contact
-  return StaleForce{&t.contact, penalty_force(world, now, m_cycle->settings().response(now.object, now.other),
-                                              m_cycle->settings().dt_s)};
+  return StaleForce{&t.contact, penalty_force(world, now, cycle().settings().response(now.object, now.other),
+                                              cycle().settings().dt_s)};
 }
 
-void InterruptibleHandler::init(const World& world, const SceneDesc& scene) {
-  m_cycle = std::make_unique<CollisionCycle>(world, resolve_collision_settings(world, scene));
+void InterruptibleHandler::init(const World& world, const CollisionSettings& settings) {
+  CycleHandler::init(world, settings);
   for (const Body& b : world.bodies) {
     m_history.emplace_back(b.x_m.size());
     m_has_history.emplace_back(b.x_m.size(), 0);
@@ -45,27 +45,27 @@ void InterruptibleHandler::init(const World& world, const SceneDesc& scene) {
 StepReport InterruptibleHandler::step(World& world, Budget& budget) {
   ++m_step;
   if (!m_in_progress) {
-    m_cycle->begin(world);
+    mutable_cycle().begin(world);
     m_cycle_start = m_step;
     m_in_progress = true;
   }
   const std::uint64_t before = budget.spent();
-  const bool done = m_cycle->advance(world, budget);
+  const bool done = mutable_cycle().advance(world, budget);
   StepReport report;
   report.work_units = budget.spent() - before;
-  report.cycle = m_cycle->number();
+  report.cycle = cycle().number();
   report.cycle_done = done;
 
-  const auto& contacts = m_cycle->contacts();
-  const std::size_t with_force = m_cycle->forces_computed();
+  const auto& contacts = cycle().contacts();
+  const std::size_t with_force = cycle().forces_computed();
   for (std::size_t i = 0; i < contacts.size(); ++i) {
     const Contact& c = contacts[i];
     m_applied[c.object][c.vertex] = m_step;  // decided here, so the history loop below leaves it alone
     if (c.separated) continue;               // left the object since detection: no force
     if (c.depth_source != DepthSource::None) {
       const Vec3 f = i < with_force ? c.force_n
-                                    : penalty_force(world, c, m_cycle->settings().response(c.object, c.other),
-                                                    m_cycle->settings().dt_s);
+                                    : penalty_force(world, c, cycle().settings().response(c.object, c.other),
+                                                    cycle().settings().dt_s);
       apply_contact_force(world, c, f);
       ++report.exact_forces;
       report.exact_points.emplace_back(c.object, c.vertex);
@@ -107,7 +107,7 @@ StepReport InterruptibleHandler::step(World& world, Budget& budget) {
     m_in_progress = false;
   }
   report.colliding_points = static_cast<std::int64_t>(m_completed.size());
-  report.depth_fallback = done ? m_cycle->depth_fallback() : 0;
+  report.depth_fallback = done ? cycle().depth_fallback() : 0;
   return report;
 }
 

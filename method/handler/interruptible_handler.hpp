@@ -1,5 +1,5 @@
 #pragma once
-/// The paper's method (seed 000): time-critical, interruptible collision
+/// The paper's method: time-critical, interruptible collision
 /// handling. `interruptible`, and the ablation `interruptible_no_extrapolation`.
 ///
 /// Every step works on the current collision cycle until the step's budget
@@ -18,7 +18,7 @@
 /// When a cycle completes, its depth-based forces enter the history and points
 /// it no longer finds are forgotten.
 ///
-/// `interruptible_tracked` (a variant, not in seed 000) replaces the force
+/// `interruptible_tracked` (a variant, not in the paper) replaces the force
 /// extrapolation: a point with a depth-based force from an earlier step keeps
 /// that contact (tet, barycentric position, direction n, depth d0) and the
 /// offset r0 = x_point - x_tet(barycentric) of the step the force was applied.
@@ -34,27 +34,19 @@
 #include <memory>
 #include <optional>
 
-#include "method/handler/collision_cycle.hpp"
-#include "method/handler/collision_handler.hpp"
+#include "method/handler/cycle_handler.hpp"
 #include "method/handler/force_extrapolation.hpp"
 
 namespace tcb {
 
-class InterruptibleHandler final : public CollisionHandler {
+class InterruptibleHandler final : public CycleHandler {
  public:
   /// What a point gets while its cycle has no depth for it yet.
   enum class Stale { Extrapolate, Nothing, Track };
   explicit InterruptibleHandler(Stale stale) : m_stale(stale) {}
-  std::string_view name() const override {
-    return m_stale == Stale::Extrapolate ? "interruptible"
-           : m_stale == Stale::Nothing   ? "interruptible_no_extrapolation"
-                                         : "interruptible_tracked";
-  }
-  void init(const World& world, const SceneDesc& scene) override;
+  void init(const World& world, const CollisionSettings& settings) override;
   StepReport step(World& world, Budget& budget) override;
   const std::vector<Contact>& contacts() const override { return m_completed; }
-  std::vector<std::string> warnings() const override { return m_cycle->settings().warnings; }
-  const CollisionCycle& cycle() const { return *m_cycle; }
 
  private:
   struct Tracked {
@@ -70,7 +62,6 @@ class InterruptibleHandler final : public CollisionHandler {
   std::optional<StaleForce> stale_force(const World& world, std::int32_t object, std::int32_t vertex);
 
   Stale m_stale;
-  std::unique_ptr<CollisionCycle> m_cycle;
   bool m_in_progress = false;
   std::int64_t m_step = 0, m_cycle_start = 0;
   std::vector<std::vector<ForceHistory>> m_history;   // per body, per vertex

@@ -4,7 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "sim/world/scene.hpp"
+#include "method/handler/collision_settings.hpp"
+#include "sim/world/world_desc.hpp"
 
 namespace tcb::test {
 
@@ -17,10 +18,16 @@ struct Placed {
   int stack = 1;
 };
 
-inline SceneDesc scene_of(const std::vector<Placed>& objects, const std::string& data_dir = "") {
-  SceneDesc scene;
-  scene.dt_s = 1e-3;
-  scene.gravity_m_per_s2 = Vec3(0, -9.81, 0);
+/// A world and its collision configuration, as a scene file would give them.
+struct TestScene {
+  WorldDesc world;
+  CollisionDesc collision;
+};
+
+inline TestScene scene_of(const std::vector<Placed>& objects, const std::string& data_dir = "") {
+  TestScene scene;
+  scene.world.dt_s = 1e-3;
+  scene.world.gravity_m_per_s2 = Vec3(0, -9.81, 0);
   // Stable for the lightest vertices of these small meshes (explicit penalty).
   scene.collision.response_stiffness_n_per_m = 100.0;
   for (const Placed& p : objects) {
@@ -33,9 +40,17 @@ inline SceneDesc scene_of(const std::vector<Placed>& objects, const std::string&
     o.self_collision = p.self_collision;
     o.scale = p.scale;
     o.stack.count = p.stack;
-    scene.objects.push_back(o);
+    scene.world.objects.push_back(o);
   }
   return scene;
+}
+
+/// The scene's world (found by argument-dependent lookup: build_world(scene_of(...))).
+inline World build_world(const TestScene& scene) { return tcb::build_world(scene.world); }
+
+/// The collision settings a run would resolve for this scene's world.
+inline CollisionSettings settings_of(const World& world, const TestScene& scene) {
+  return resolve_collision_settings(world, scene.collision, scene.world.dt_s);
 }
 
 }  // namespace tcb::test

@@ -20,9 +20,9 @@ TEST_CASE("oracle: two axis-aligned boxes overlapping by a known box", "[oracle]
   // A spans [-0.1, 0.1]^3 on a 0.05 grid; B spans [0, 0.2]^3. A's vertices with
   // all coordinates in {0.05, 0.1} are inside B, at depth min(coordinates);
   // those with a 0 coordinate and the rest >= 0 lie on B's surface.
-  const SceneDesc scene = test::scene_of({{"a", "box:size=0.2x0.2x0.2,cells=4x4x4"},
+  const test::TestScene scene = test::scene_of({{"a", "box:size=0.2x0.2x0.2,cells=4x4x4"},
                                           {"b", "box:size=0.2x0.2x0.2,cells=3x3x3", Vec3(0.1, 0.1, 0.1)}});
-  const World world = build_world(scene);
+  const World world = build_world(scene.world);
   const OracleFrame frame = compute_inside_oracle(world);
   CHECK(frame.unmeasured.empty());
   std::map<int, double> a_inside;
@@ -41,9 +41,9 @@ TEST_CASE("oracle: two axis-aligned boxes overlapping by a known box", "[oracle]
 }
 
 TEST_CASE("oracle: a small box wholly inside a large one is found (FCL would see nothing)", "[oracle]") {
-  const SceneDesc scene = test::scene_of(
+  const test::TestScene scene = test::scene_of(
       {{"big", "box:size=1x1x1,cells=2x2x2", Vec3::Zero(), true}, {"small", "box:size=0.2x0.2x0.2,cells=2x2x2"}});
-  const World world = build_world(scene);
+  const World world = build_world(scene.world);
   const OracleFrame frame = compute_inside_oracle(world);
   int small_inside = 0;
   for (const OraclePoint& p : frame.inside)
@@ -81,10 +81,10 @@ struct OracleRun {
 
 // Runs `full` for `steps` steps with the oracle every `every` steps; every
 // defined recall and precision must be exactly 1.
-OracleRun full_against_oracle(const SceneDesc& scene, int steps, int every) {
-  World world = build_world(scene);
-  auto full = make_handler("full", scene);
-  full->init(world, scene);
+OracleRun full_against_oracle(const test::TestScene& scene, int steps, int every) {
+  World world = build_world(scene.world);
+  auto full = make_handler("full");
+  full->init(world, test::settings_of(world, scene));
   OracleRun run;
   for (int s = 1; s <= steps; ++s) {
     Budget unlimited = Budget::unlimited();
@@ -99,21 +99,27 @@ OracleRun full_against_oracle(const SceneDesc& scene, int steps, int every) {
       run.method_points += static_cast<std::int64_t>(full->contacts().size());
       run.oracle_points += c.oracle_points;
     }
-    world.step(scene.dt_s);
+    world.step(scene.world.dt_s);
     REQUIRE(std::isfinite(world.max_speed_m_per_s()));
   }
   return run;
+}
+
+// A committed scene file's world and collision table, as the tests here use them.
+test::TestScene committed(const std::string& name) {
+  const SceneDesc s = load_scene_file(resolve_scene(name, default_scene_dirs()));
+  return {s.world, s.collision};
 }
 
 }  // namespace
 
 TEST_CASE("full reaches recall 1 and precision 1 against the oracle", "[oracle]") {
   const std::string data = TCBENCH_DATA_DIR;
-  SceneDesc dogs = test::scene_of({{"dog", std::string(TCBENCH_SHARED_MESHES) + "/dog.mesh", Vec3::Zero(), false,
+  test::TestScene dogs = test::scene_of({{"dog", std::string(TCBENCH_SHARED_MESHES) + "/dog.mesh", Vec3::Zero(), false,
                                     false, 0.01},
                                    {"dog2", std::string(TCBENCH_SHARED_MESHES) + "/dog.mesh", Vec3(0.05, 0.4, 0.1),
                                     false, false, 0.01}});
-  const std::vector<std::tuple<std::string, SceneDesc, int, int>> scenes = {
+  const std::vector<std::tuple<std::string, test::TestScene, int, int>> scenes = {
       {"plate stack", test::scene_of({{"plate", "box:size=0.3x0.02x0.3,cells=4x2x4", Vec3(0, 0.01, 0), false, false,
                                        1.0, 4}}), 20, 1},
       {"sphere into torus", test::scene_of({{"torus", "meshes/torus_coarse.mesh"},
@@ -122,7 +128,7 @@ TEST_CASE("full reaches recall 1 and precision 1 against the oracle", "[oracle]"
                                            data), 20, 1},
       {"two boxes", test::scene_of({{"a", "box:size=0.2x0.2x0.2,cells=3x3x3"},
                                     {"b", "box:size=0.2x0.2x0.2,cells=4x2x3", Vec3(0.07, 0.05, 0.03)}}), 20, 1},
-      {"plates20", load_scene_file(resolve_scene("plates20", default_scene_dirs())), 300, 15},
+      {"plates20", committed("plates20"), 300, 15},
       {"two dogs (open surfaces: decided by tets)", dogs, 6, 1},
   };
   for (const auto& [name, scene, steps, every] : scenes) {
@@ -135,17 +141,17 @@ TEST_CASE("full reaches recall 1 and precision 1 against the oracle", "[oracle]"
 }
 
 TEST_CASE("cube_drop has no object pairs: the oracle and full both find nothing", "[oracle]") {
-  const OracleRun run = full_against_oracle(load_scene_file(resolve_scene("cube_drop", default_scene_dirs())), 400, 20);
+  const OracleRun run = full_against_oracle(committed("cube_drop"), 400, 20);
   CHECK(run.compared == 0);
   CHECK(run.oracle_points == 0);
   CHECK(run.method_points == 0);
 }
 
 TEST_CASE("true depth: the AABB tree (inexact constructions) against the exact kernel", "[oracle]") {
-  const SceneDesc scene = test::scene_of(
+  const test::TestScene scene = test::scene_of(
       {{"torus", "meshes/torus_coarse.mesh"}, {"sphere", "meshes/sphere_fine.mesh", Vec3(0.1, 0.02, 0.0), false, false, 0.5}},
       TCBENCH_DATA_DIR);
-  const World world = build_world(scene);
+  const World world = build_world(scene.world);
   const OracleFrame frame = compute_inside_oracle(world);
   using E = CGAL::Exact_predicates_exact_constructions_kernel;
   int checked = 0;

@@ -76,9 +76,9 @@ TEST_CASE("tet_inside and the surface oracle equal brute force: degenerate grid-
   // grid, and A's vertices fall exactly on B's vertices, edges, interior faces
   // and boundary faces. A: [-0.25, 0.25]^3, spacing 0.125; B: [0, 0.25] x
   // [0, 0.25] x [-0.125, 0.125], spacing 0.125.
-  const SceneDesc scene = test::scene_of({{"a", "box:size=0.5x0.5x0.5,cells=4x4x4"},
+  const test::TestScene scene = test::scene_of({{"a", "box:size=0.5x0.5x0.5,cells=4x4x4"},
                                           {"b", "box:size=0.25x0.25x0.25,cells=2x2x2", Vec3(0.125, 0.125, 0.0)}});
-  const World world = build_world(scene);
+  const World world = build_world(scene.world);
   const std::vector<TetSide> expected = brute_force(world.bodies[1], world.bodies[0].x_m, false);
   CHECK(count(expected, TetSide::Inside) == 1);     // B's centre vertex: on interior faces only
   CHECK(count(expected, TetSide::Boundary) == 26);  // the rest of B's 3x3x3 grid
@@ -94,10 +94,10 @@ TEST_CASE("tet_inside and the surface oracle equal brute force: degenerate grid-
 }
 
 TEST_CASE("tet_inside and the surface oracle equal brute force: sphere through torus", "[oracle]") {
-  const SceneDesc scene = test::scene_of(
+  const test::TestScene scene = test::scene_of(
       {{"torus", "meshes/torus_coarse.mesh"}, {"sphere", "meshes/sphere_coarse.mesh", Vec3(0.1, 0.02, 0.0), false, false, 0.5}},
       TCBENCH_DATA_DIR);
-  World world = build_world(scene);
+  World world = build_world(scene.world);
   // Random points in the torus's box besides the sphere's vertices.
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -115,8 +115,8 @@ TEST_CASE("tet_inside and the surface oracle equal brute force: sphere through t
 }
 
 TEST_CASE("self-collision: a vertex pushed into its own body is inside, with no true depth", "[oracle]") {
-  const SceneDesc scene = test::scene_of({{"self", "box:size=0.5x0.5x0.5,cells=4x4x4", Vec3::Zero(), false, true}});
-  World world = build_world(scene);
+  const test::TestScene scene = test::scene_of({{"self", "box:size=0.5x0.5x0.5,cells=4x4x4", Vec3::Zero(), false, true}});
+  World world = build_world(scene.world);
   Body& body = world.bodies[0];
   CHECK(count(classify_self_points(body), TetSide::Inside) == 0);  // conforming and undeformed
   std::int32_t corner = 0;

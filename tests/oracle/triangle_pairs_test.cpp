@@ -45,10 +45,10 @@ bool same(const std::vector<TrianglePair>& p, const std::vector<TrianglePair>& q
 }  // namespace
 
 TEST_CASE("FCL triangle pairs equal CGAL's exact do_intersect, also after the meshes move", "[oracle]") {
-  const SceneDesc scene = test::scene_of(
+  const test::TestScene scene = test::scene_of(
       {{"torus", "meshes/torus_coarse.mesh"}, {"sphere", "meshes/sphere_fine.mesh", Vec3(0.1, 0.02, 0.0), false, false, 0.5}},
       TCBENCH_DATA_DIR);
-  World world = build_world(scene);
+  World world = build_world(scene.world);
   SurfaceTrianglePairs fcl_pairs(world);
   for (int frame = 0; frame < 3; ++frame) {
     const std::vector<TrianglePair> found = fcl_pairs.find(world);  // refitted to the moved sphere

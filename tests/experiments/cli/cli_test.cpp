@@ -4,6 +4,8 @@
 #include <catch2/catch.hpp>
 
 #include <nlohmann/json.hpp>
+
+#include <algorithm>
 #include <unistd.h>
 
 #include <filesystem>
@@ -85,13 +87,23 @@ TEST_CASE("cli: run exit codes 0, 1 and 2", "[cli]") {
   CHECK(wall_run["budget"]["kind"] == "wall_ms");
   CHECK(wall_run["summary"]["overshoot_pct"]["p99"].is_number());
   // Method settings go through --set like scene keys, and are validated.
-  CHECK(cli({"run", "plates20", "--method", "every_nth", "--set", "every_nth.n=3", "--steps", "4", "--out",
-             (dir / "nth").string(), "--quiet"})
+  CHECK(cli({"run", "plates20", "--method", "every_nth", "--set", "method.every_nth.n=3", "--steps", "4", "--out",
+             (dir / "nth").string(), "--quiet", "--seed", "5"})
             .code == 0);
-  const Result bad_n = cli({"run", "plates20", "--method", "every_nth", "--set", "every_nth.n=0", "--steps", "4",
-                            "--out", (dir / "nth0").string()});
+  // run.json keeps the settings as their own object and the command line as given.
+  const auto nth = nlohmann::json::parse(tcb::read_file(dir / "nth" / "run.json"));
+  CHECK(nth["settings"]["n"] == 3);
+  CHECK(nth["settings"]["hold"] == true);
+  CHECK(nth["method_label"] == "every_nth(n=3)");
+  CHECK(nth["overrides"].empty());  // a method setting is not a scene override
+  const std::vector<std::string> argv = nth["command"];
+  CHECK(std::find(argv.begin(), argv.end(), "--seed") != argv.end());
+  CHECK(std::find(argv.begin(), argv.end(), "--out") != argv.end());
+  CHECK(std::find(argv.begin(), argv.end(), "method.every_nth.n=3") != argv.end());
+  const Result bad_n = cli({"run", "plates20", "--method", "every_nth", "--set", "method.every_nth.n=0", "--steps",
+                            "4", "--out", (dir / "nth0").string()});
   CHECK(bad_n.code == 2);
-  CHECK_THAT(bad_n.err, Catch::Matchers::Contains("--set every_nth.n=0"));
+  CHECK_THAT(bad_n.err, Catch::Matchers::Contains("--set method.every_nth.n=0"));
   CHECK_FALSE(fs::exists(dir / "nth0"));
   CHECK(cli({"run", "cube_drop", "--steps", "-3"}).code == 2);
   fs::remove_all(dir);

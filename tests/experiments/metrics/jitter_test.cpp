@@ -7,9 +7,9 @@
 using namespace tcb;
 
 TEST_CASE("jitter: RMS of body vertical velocity over the second half", "[metrics]") {
-  const SceneDesc scene = test::scene_of({{"a", "box:size=0.2x0.2x0.2,cells=2x2x2"},
+  const test::TestScene scene = test::scene_of({{"a", "box:size=0.2x0.2x0.2,cells=2x2x2"},
                                           {"b", "box:size=0.2x0.2x0.2,cells=2x2x2", Vec3(0.5, 0, 0)}});
-  World world = build_world(scene);
+  World world = build_world(scene.world);
   JitterMeter meter;
   for (std::int64_t step = 1; step <= 10; ++step) {
     // a moves up and down at 0.3 m/s, b is still; horizontal motion is ignored.

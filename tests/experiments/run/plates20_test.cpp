@@ -9,10 +9,11 @@ using namespace tcb;
 
 TEST_CASE("plates20: full keeps the 20-plate stack standing for the whole scene", "[scene][slow]") {
   const SceneDesc scene = load_scene_file(resolve_scene("plates20", default_scene_dirs()));
-  World world = build_world(scene);
-  auto handler = make_handler("full", scene);
-  handler->init(world, scene);
-  CHECK(handler->warnings().empty());
+  World world = build_world(scene.world);
+  auto handler = make_handler("full");
+  const CollisionSettings settings = resolve_collision_settings(world, scene.collision, scene.world.dt_s);
+  handler->init(world, settings);
+  CHECK(settings.warnings.empty());
   const double thickness = 0.02;
   const auto mean_y = [&](const Body& b) {
     double y = 0.0;
@@ -23,7 +24,7 @@ TEST_CASE("plates20: full keeps the 20-plate stack standing for the whole scene"
   for (std::int64_t s = 0; s < scene.steps; ++s) {
     Budget unlimited = Budget::unlimited();
     handler->step(world, unlimited);
-    world.step(scene.dt_s);
+    world.step(scene.world.dt_s);
     REQUIRE(std::isfinite(world.max_speed_m_per_s()));
     if (s % 50 == 49) {
       for (std::size_t i = 0; i + 1 < world.bodies.size(); ++i)
@@ -43,19 +44,20 @@ TEST_CASE("interruptible without a budget gives full's forces on every step of p
   for (const char* name : {"cube_drop", "plates20"}) {
     INFO(name);
     const SceneDesc scene = load_scene_file(resolve_scene(name, default_scene_dirs()));
-    World a = build_world(scene), b = build_world(scene);
-    auto full = make_handler("full", scene);
-    auto interruptible = make_handler("interruptible", scene);
-    full->init(a, scene);
-    interruptible->init(b, scene);
+    World a = build_world(scene.world), b = build_world(scene.world);
+    auto full = make_handler("full");
+    auto interruptible = make_handler("interruptible");
+    const CollisionSettings settings = resolve_collision_settings(a, scene.collision, scene.world.dt_s);
+    full->init(a, settings);
+    interruptible->init(b, settings);
     for (std::int64_t s = 0; s < scene.steps; ++s) {
       Budget ua = Budget::unlimited(), ub = Budget::unlimited();
       full->step(a, ua);
       interruptible->step(b, ub);
       for (std::size_t i = 0; i < a.bodies.size(); ++i)
         REQUIRE(a.bodies[i].contact_force_n == b.bodies[i].contact_force_n);
-      a.step(scene.dt_s);
-      b.step(scene.dt_s);
+      a.step(scene.world.dt_s);
+      b.step(scene.world.dt_s);
     }
     for (std::size_t i = 0; i < a.bodies.size(); ++i) CHECK(a.bodies[i].x_m == b.bodies[i].x_m);
   }

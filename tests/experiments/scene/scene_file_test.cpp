@@ -50,16 +50,16 @@ struct BadCase {
 TEST_CASE("scene file: every key read", "[scene]") {
   const SceneDesc s = parse_scene(kScene, "dir/test.toml");
   CHECK(s.name == "test");
-  CHECK(s.dt_s == 0.002);
+  CHECK(s.world.dt_s == 0.002);
   CHECK(s.steps == 10);
-  CHECK(s.gravity_m_per_s2 == Vec3(0, -1, 0));
-  REQUIRE(s.ground);
-  CHECK(s.ground->height_m == -0.5);
-  CHECK(s.ground->friction == 0.25);
+  CHECK(s.world.gravity_m_per_s2 == Vec3(0, -1, 0));
+  REQUIRE(s.world.ground);
+  CHECK(s.world.ground->height_m == -0.5);
+  CHECK(s.world.ground->friction == 0.25);
   CHECK(s.collision.cell_size_m == 0.05);
   CHECK(s.collision.response_stiffness_n_per_m == 2.0e4);
-  REQUIRE(s.objects.size() == 2);
-  const ObjectDesc& plate = s.objects[0];
+  REQUIRE(s.world.objects.size() == 2);
+  const ObjectDesc& plate = s.world.objects[0];
   CHECK(plate.base_dir == "dir");
   CHECK(plate.source_line == 15);
   CHECK(plate.stack.count == 3);
@@ -68,7 +68,7 @@ TEST_CASE("scene file: every key read", "[scene]") {
   CHECK(plate.material.integrator == Integrator::VelocityVerlet);
   CHECK(plate.material.youngs_modulus_pa == 2.0e5);
   CHECK(plate.material.density_kg_per_m3 == 500.0);
-  CHECK(s.objects[1].passive);
+  CHECK(s.world.objects[1].passive);
 }
 
 TEST_CASE("scene file: --set overrides, by name and by index, and new tables", "[scene]") {
@@ -77,17 +77,17 @@ TEST_CASE("scene file: --set overrides, by name and by index, and new tables", "
                                    "object.plate.material.model=corotational_fem",
                                    "object.plate.material.integrator=implicit_euler", "collision.cell_size=auto",
                                    "object.floor.velocity=[1, 2, 3]"});
-  CHECK(s.dt_s == 0.004);
-  CHECK(s.objects[0].material.youngs_modulus_pa == 3e5);
-  CHECK(s.objects[0].material.model == MaterialModel::CorotationalFem);
-  CHECK(s.objects[1].scale == 2.0);
-  CHECK(s.objects[1].velocity_m_per_s == Vec3(1, 2, 3));
+  CHECK(s.world.dt_s == 0.004);
+  CHECK(s.world.objects[0].material.youngs_modulus_pa == 3e5);
+  CHECK(s.world.objects[0].material.model == MaterialModel::CorotationalFem);
+  CHECK(s.world.objects[1].scale == 2.0);
+  CHECK(s.world.objects[1].velocity_m_per_s == Vec3(1, 2, 3));
   CHECK_FALSE(s.collision.cell_size_m.has_value());
   const std::string no_ground = "[[object]]\nmesh = \"box:size=1x1x1\"\n";
-  CHECK_FALSE(parse_scene(no_ground, "g.toml").ground);
+  CHECK_FALSE(parse_scene(no_ground, "g.toml").world.ground);
   const SceneDesc with_ground = parse_scene(no_ground, "g.toml", {"ground.height=0.5"});
-  REQUIRE(with_ground.ground);
-  CHECK(with_ground.ground->height_m == 0.5);
+  REQUIRE(with_ground.world.ground);
+  CHECK(with_ground.world.ground->height_m == 0.5);
 }
 
 TEST_CASE("scene file: malformed input names the file, the line and the problem", "[scene]") {
@@ -133,11 +133,42 @@ TEST_CASE("scene file: malformed input names the file, the line and the problem"
   }
 }
 
+TEST_CASE("scene file: a method's settings in [method.NAME], typed by the method's schema", "[scene]") {
+  const std::string obj = "[[object]]\nmesh = \"box:size=1x1x1\"\n";
+  const SceneDesc s = parse_scene(obj + "[method.every_nth]\nn = 4\n", "m.toml");
+  REQUIRE(s.methods.count("every_nth"));
+  CHECK(s.methods.at("every_nth").integer("n") == 4);
+  CHECK(s.methods.at("every_nth").boolean("hold"));  // the default, filled in
+  const SceneDesc set = parse_scene(obj, "m.toml", {"method.every_nth.hold=false"});
+  CHECK_FALSE(set.methods.at("every_nth").boolean("hold"));
+  CHECK(set.methods.at("every_nth").integer("n") == 2);
+  const BadCase cases[] = {
+      {"zero", obj + "[method.every_nth]\nn = 0\n", {}, "m.toml", 4, "method.every_nth.n: must lie in [1, 1000000]"},
+      {"fraction", obj + "[method.every_nth]\nn = 2.5\n", {}, "m.toml", 4, "method.every_nth.n: must be a whole number"},
+      {"wrong type", obj + "[method.every_nth]\nhold = 1\n", {}, "m.toml", 4, "must be true or false"},
+      {"unknown key", obj + "[method.every_nth]\nn = 2\nm = 1\n", {}, "m.toml", 5, "unknown key 'm' in method.every_nth"},
+      {"unknown method", obj + "[method.every_third]\nn = 2\n", {}, "m.toml", 3, "no method of that name"},
+      {"old form", obj + "[every_nth]\nn = 2\n", {}, "m.toml", 3, "go in [method.every_nth]"},
+      {"--set", obj, {"method.every_nth.n=0"}, "--set method.every_nth.n=0", 0, "must lie in"},
+  };
+  for (const BadCase& c : cases) {
+    INFO(c.name);
+    try {
+      parse_scene(c.text, "m.toml", c.overrides);
+      FAIL("accepted");
+    } catch (const InputError& e) {
+      CHECK(e.file() == c.file);
+      CHECK(e.line() == c.line);
+      CHECK_THAT(e.what(), Contains(c.message));
+    }
+  }
+}
+
 TEST_CASE("the committed scenes load and build", "[scene]") {
   for (const char* name : {"plates20", "cube_drop"}) {
     INFO(name);
     const SceneDesc s = load_scene_file(resolve_scene(name, default_scene_dirs()));
-    const World world = build_world(s);
+    const World world = build_world(s.world);
     CHECK(world.bodies.size() == (std::string(name) == "plates20" ? 20u : 1u));
     CHECK(world.ground.has_value());
   }

@@ -25,13 +25,43 @@ fs::path write_sweep(const std::string& name, const std::string& text) {
 }  // namespace
 
 TEST_CASE("sweep budgets: absolute and relative labels", "[sweep]") {
-  CHECK(parse_sweep_budget("none")->kind == SweepBudget::Kind::None);
-  CHECK(parse_sweep_budget("ms:4.5")->value == 4.5);
-  CHECK(parse_sweep_budget("work:20000")->kind == SweepBudget::Kind::Work);
-  CHECK(parse_sweep_budget("full/3")->kind == SweepBudget::Kind::RelativeMs);
-  CHECK(parse_sweep_budget("full-work/2")->value == 2.0);
-  for (const char* bad : {"", "ms:", "ms:-1", "work:1.5", "full/0", "full/x", "half", "ms:4.5x"})
+  CHECK(parse_sweep_budget("none")->absolute.kind == BudgetKind::None);
+  CHECK(parse_sweep_budget("ms:4.5")->absolute.value == 4.5);
+  CHECK(parse_sweep_budget("work:20000")->absolute.kind == BudgetKind::Work);
+  CHECK(parse_sweep_budget("full/3")->relative == SweepBudget::Relative::FullMs);
+  CHECK(parse_sweep_budget("full-work/2")->divisor == 2.0);
+  CHECK_FALSE(parse_sweep_budget("ms:4.5")->is_relative());
+  for (const char* bad : {"", "ms:", "ms:-1", "work:1.5", "full/0", "full/x", "half", "ms:4.5x", "full-work/-2"})
     CHECK_FALSE(parse_sweep_budget(bad).has_value());
+}
+
+TEST_CASE("one budget type: BudgetSpec parses and labels its three forms", "[sweep]") {
+  for (const char* label : {"none", "ms:4.5", "ms:0", "work:20000", "work:0"}) {
+    INFO(label);
+    REQUIRE(BudgetSpec::parse(label));
+    CHECK(BudgetSpec::parse(label)->label() == label);
+  }
+  CHECK(BudgetSpec::parse("ms:4.5")->kind_name() == "wall_ms");
+  CHECK(BudgetSpec::parse("work:7")->start().kind() == BudgetKind::Work);
+  for (const char* bad : {"", "ms", "ms:nan", "ms:inf", "work:-1", "work:2.5", "full/3", "none "})
+    CHECK_FALSE(BudgetSpec::parse(bad).has_value());
+}
+
+TEST_CASE("sweep methods: a name, or a table with the method's settings checked like a scene's", "[sweep]") {
+  const fs::path path = write_sweep("methods", R"([sweep]
+scenes = ["cube_drop"]
+methods = ["full", { name = "every_nth", n = 4 }, { name = "every_nth", hold = false }]
+budgets = ["none"]
+figures = ["jitter"]
+)");
+  const SweepPlan plan = load_sweep_plan(path);
+  REQUIRE(plan.runs.size() == 3);
+  CHECK(plan.runs[1].method == "every_nth");
+  CHECK(plan.runs[1].method_sets == std::vector<std::string>{"method.every_nth.n=4"});
+  CHECK(plan.runs[1].id == "cube_drop-every_nth_n_4-none-s0");
+  CHECK(plan.runs[2].method_sets == std::vector<std::string>{"method.every_nth.hold=false"});
+  CHECK(plan.figures == std::vector<std::string>{"jitter"});
+  fs::remove(path);
 }
 
 TEST_CASE("a sweep expands to scenes x sets x seeds groups, each with its reference first", "[sweep]") {
@@ -54,7 +84,7 @@ sets = [[], ["scene.dt=0.002"]]
   }
   CHECK(ids.size() == plan.runs.size());
   for (const SweepRun& run : plan.runs) {
-    if (!run.budget.relative()) continue;
+    if (!run.budget.is_relative()) continue;
     REQUIRE(position.count(run.reference_id));
     const SweepRun& reference = plan.runs[position[run.reference_id]];
     CHECK(position[run.reference_id] < position[run.id]);
@@ -98,6 +128,12 @@ TEST_CASE("malformed sweep files are rejected with the file and the line", "[swe
       {"[sweep]\nscenes = []\nmethods = [\"full\"]\nbudgets = [\"none\"]\n", ":2: sweep.scenes"},
       {"[sweep]\nscenes = [\"cube_drop\"\n", ":"},
       {"[other]\n", "missing the [sweep] table"},
+      {"[sweep]\nscenes = [\"cube_drop\"]\nmethods = [{ name = \"every_nth\", n = 0 }]\nbudgets = [\"none\"]\n",
+       ":3: methods[0].n: must lie in"},
+      {"[sweep]\nscenes = [\"cube_drop\"]\nmethods = [{ name = \"every_nth\", m = 1 }]\nbudgets = [\"none\"]\n",
+       ":3: unknown key 'm'"},
+      {"[sweep]\nscenes = [\"cube_drop\"]\nmethods = [\"full\"]\nbudgets = [\"none\"]\nfigures = [\"fig99\"]\n",
+       ":5: sweep.figures: no report figure 'fig99'"},
   };
   for (const auto& [text, expected] : cases) {
     INFO(text);

@@ -17,10 +17,10 @@ struct Outcome {
   StepReport report;
 };
 
-Outcome one_cycle(const SceneDesc& scene) {
-  Outcome o{build_world(scene), {}, {}};
-  auto handler = make_handler("full", scene);
-  handler->init(o.world, scene);
+Outcome one_cycle(const test::TestScene& scene) {
+  Outcome o{build_world(scene.world), {}, {}};
+  auto handler = make_handler("full");
+  handler->init(o.world, test::settings_of(o.world, scene));
   Budget unlimited = Budget::unlimited();
   o.report = handler->step(o.world, unlimited);
   o.contacts = handler->contacts();

@@ -12,8 +12,8 @@ using namespace tcb;
 
 namespace {
 
-SceneDesc pressed_blocks() {
-  SceneDesc scene = test::scene_of({{"floor", "box:size=1x0.1x1,cells=4x1x4", Vec3::Zero(), true},
+test::TestScene pressed_blocks() {
+  test::TestScene scene = test::scene_of({{"floor", "box:size=1x0.1x1,cells=4x1x4", Vec3::Zero(), true},
                                     {"cube", "box:size=0.2x0.2x0.2,cells=4x4x4", Vec3(0.0, 0.14, 0.0)}});
   scene.collision.response_stiffness_n_per_m = 1000.0;
   return scene;
@@ -32,38 +32,38 @@ struct TickingClock {
 }  // namespace
 
 TEST_CASE("interruptible: the budget stops after exactly k tasks and resumes at k+1", "[interruptible]") {
-  const SceneDesc scene = pressed_blocks();
+  const test::TestScene scene = pressed_blocks();
   // Learn how many tasks one whole cycle has.
   std::int64_t total_tasks = 0;
   {
-    World world = build_world(scene);
+    World world = build_world(scene.world);
     InterruptibleHandler handler(InterruptibleHandler::Stale::Extrapolate);
-    handler.init(world, scene);
+    handler.init(world, test::settings_of(world, scene));
     Budget unlimited = Budget::unlimited();
     REQUIRE(handler.step(world, unlimited).cycle_done);
     total_tasks = handler.cycle().tasks_done();
   }
   for (int k : {1, 7, 40}) {
     INFO("k = " << k << " point queries in the first step; " << total_tasks << " tasks per cycle");
-    World world = build_world(scene);
+    World world = build_world(scene.world);
     InterruptibleHandler handler(InterruptibleHandler::Stale::Extrapolate);
-    handler.init(world, scene);
+    handler.init(world, test::settings_of(world, scene));
     TickingClock ticking;
     const int per_step = k + 1;  // the first step's tasks: hashing the tets, then k point queries
     Budget first = Budget::wall_ms(per_step, ticking.clock());
     StepReport r = handler.step(world, first);
     CHECK_FALSE(r.cycle_done);
     CHECK(handler.cycle().queries_done() == static_cast<std::size_t>(k));
-    world.step(scene.dt_s);
+    world.step(scene.world.dt_s);
     Budget second = Budget::wall_ms(per_step, ticking.clock());
     r = handler.step(world, second);
     CHECK(handler.cycle().queries_done() == static_cast<std::size_t>(k + per_step));  // resumed at k+1
-    world.step(scene.dt_s);
+    world.step(scene.world.dt_s);
     int steps = 2;
     while (!r.cycle_done) {
       Budget b = Budget::wall_ms(per_step, ticking.clock());
       r = handler.step(world, b);
-      world.step(scene.dt_s);
+      world.step(scene.world.dt_s);
       ++steps;
       REQUIRE(steps < 100000);
     }
@@ -73,25 +73,25 @@ TEST_CASE("interruptible: the budget stops after exactly k tasks and resumes at 
 }
 
 TEST_CASE("interruptible: budget 0 hashes the tets, then does one task per step; stays finite", "[interruptible]") {
-  const SceneDesc scene = pressed_blocks();
-  World world = build_world(scene);
+  const test::TestScene scene = pressed_blocks();
+  World world = build_world(scene.world);
   InterruptibleHandler handler(InterruptibleHandler::Stale::Extrapolate);
-  handler.init(world, scene);
+  handler.init(world, test::settings_of(world, scene));
   for (int s = 1; s <= 200; ++s) {
     Budget zero = Budget::work_units(0);
     const StepReport r = handler.step(world, zero);
     if (s == 1) CHECK(r.work_units > 0);          // the tet hashing is never interrupted
     CHECK(handler.cycle().tasks_done() == s);     // the budget is polled after every task
-    world.step(scene.dt_s);
+    world.step(scene.world.dt_s);
     REQUIRE(std::isfinite(world.max_speed_m_per_s()));
   }
 }
 
 TEST_CASE("interruptible: a budget far larger than needed behaves like full", "[interruptible]") {
-  const SceneDesc scene = pressed_blocks();
-  World world = build_world(scene);
+  const test::TestScene scene = pressed_blocks();
+  World world = build_world(scene.world);
   InterruptibleHandler handler(InterruptibleHandler::Stale::Extrapolate);
-  handler.init(world, scene);
+  handler.init(world, test::settings_of(world, scene));
   Budget huge = Budget::wall_ms(1e9);
   const StepReport r = handler.step(world, huge);
   CHECK(r.cycle_done);
@@ -101,19 +101,19 @@ TEST_CASE("interruptible: a budget far larger than needed behaves like full", "[
 
 TEST_CASE("interruptible with no budget gives full's forces bit for bit", "[interruptible]") {
   for (const char* name : {"interruptible", "interruptible_no_extrapolation", "interruptible_tracked"}) {
-    const SceneDesc scene = pressed_blocks();
-    World a = build_world(scene), b = build_world(scene);
-    auto full = make_handler("full", scene);
-    auto interruptible = make_handler(name, scene);
-    full->init(a, scene);
-    interruptible->init(b, scene);
+    const test::TestScene scene = pressed_blocks();
+    World a = build_world(scene.world), b = build_world(scene.world);
+    auto full = make_handler("full");
+    auto interruptible = make_handler(name);
+    full->init(a, test::settings_of(a, scene));
+    interruptible->init(b, test::settings_of(b, scene));
     for (int s = 0; s < 300; ++s) {
       Budget ua = Budget::unlimited(), ub = Budget::unlimited();
       full->step(a, ua);
       interruptible->step(b, ub);
       for (std::size_t i = 0; i < a.bodies.size(); ++i) REQUIRE(a.bodies[i].contact_force_n == b.bodies[i].contact_force_n);
-      a.step(scene.dt_s);
-      b.step(scene.dt_s);
+      a.step(scene.world.dt_s);
+      b.step(scene.world.dt_s);
     }
   }
 }
@@ -127,18 +127,18 @@ TEST_CASE("interruptible stays finite at the extremes", "[interruptible][extreme
   for (const Case c : {Case{"dt 1e-5", 1e-5, 1.0, 500}, Case{"dt 1e-2", 1e-2, 1.0, 500},
                        Case{"mass ratio 1000:1", 1e-3, 1000.0, 500}, Case{"budget 1 unit", 1e-3, 1.0, 1}}) {
     INFO(c.name);
-    SceneDesc scene = pressed_blocks();
-    scene.dt_s = c.dt_s;
-    scene.objects[0].passive = false;  // two dynamic bodies: a heavy cube on a light slab
-    scene.ground = GroundPlane{-0.05, 0.5};
-    scene.objects[1].material.density_kg_per_m3 *= c.density_ratio;
-    World world = build_world(scene);
-    auto handler = make_handler("interruptible", scene);
-    handler->init(world, scene);
+    test::TestScene scene = pressed_blocks();
+    scene.world.dt_s = c.dt_s;
+    scene.world.objects[0].passive = false;  // two dynamic bodies: a heavy cube on a light slab
+    scene.world.ground = GroundPlane{-0.05, 0.5};
+    scene.world.objects[1].material.density_kg_per_m3 *= c.density_ratio;
+    World world = build_world(scene.world);
+    auto handler = make_handler("interruptible");
+    handler->init(world, test::settings_of(world, scene));
     for (int s = 0; s < 300; ++s) {
       Budget budget = Budget::work_units(c.budget);
       handler->step(world, budget);
-      world.step(scene.dt_s);
+      world.step(scene.world.dt_s);
       REQUIRE(std::isfinite(world.max_speed_m_per_s()));
     }
   }
@@ -146,10 +146,10 @@ TEST_CASE("interruptible stays finite at the extremes", "[interruptible][extreme
 
 TEST_CASE("interruptible_tracked: a known contact's depth follows the current positions between cycles",
           "[interruptible]") {
-  const SceneDesc scene = pressed_blocks();
-  World world = build_world(scene);
+  const test::TestScene scene = pressed_blocks();
+  World world = build_world(scene.world);
   InterruptibleHandler handler(InterruptibleHandler::Stale::Track);
-  handler.init(world, scene);
+  handler.init(world, test::settings_of(world, scene));
   Budget unlimited = Budget::unlimited();
   REQUIRE(handler.step(world, unlimited).cycle_done);  // cycle 1: depths and forces for the pressed points
   Vec3 exact = Vec3::Zero();
@@ -160,9 +160,9 @@ TEST_CASE("interruptible_tracked: a known contact's depth follows the current po
   // Learn the contacts at the pressed position, then raise the cube by `up`
   // (negative: press it further) before a step whose cycle has no depths yet.
   const auto stale_step = [&](double up) {
-    World moved = build_world(scene);
+    World moved = build_world(scene.world);
     InterruptibleHandler h(InterruptibleHandler::Stale::Track);
-    h.init(moved, scene);
+    h.init(moved, test::settings_of(moved, scene));
     Budget u = Budget::unlimited();
     h.step(moved, u);
     for (auto& b : moved.bodies) std::fill(b.contact_force_n.begin(), b.contact_force_n.end(), Vec3::Zero());

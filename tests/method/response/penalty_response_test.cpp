@@ -22,14 +22,14 @@ Vec3 total_force(const World& world) {
 }  // namespace
 
 TEST_CASE("penalty response conserves momentum", "[response]") {
-  SceneDesc scene = test::scene_of({{"a", "box:size=0.2x0.2x0.2,cells=3x3x3"},
+  test::TestScene scene = test::scene_of({{"a", "box:size=0.2x0.2x0.2,cells=3x3x3"},
                                     {"b", "box:size=0.2x0.2x0.2,cells=4x2x3", Vec3(0.07, 0.05, 0.03)}});
   scene.collision.damping_n_s_per_m = 5.0;
   scene.collision.friction = 0.5;
-  World world = build_world(scene);
+  World world = build_world(scene.world);
   for (Vec3& v : world.bodies[0].v_m_per_s) v = Vec3(0.3, -0.2, 0.1);  // sliding and approaching
-  auto handler = make_handler("full", scene);
-  handler->init(world, scene);
+  auto handler = make_handler("full");
+  handler->init(world, test::settings_of(world, scene));
   Budget unlimited = Budget::unlimited();
   const StepReport report = handler->step(world, unlimited);
   REQUIRE(report.exact_forces > 0);
@@ -40,10 +40,10 @@ TEST_CASE("penalty response conserves momentum", "[response]") {
 }
 
 TEST_CASE("explicit damping and friction are clamped to one step's worth", "[response]") {
-  SceneDesc scene = test::scene_of(
+  test::TestScene scene = test::scene_of(
       {{"floor", "box:size=1x0.1x1,cells=2x1x2", Vec3::Zero(), true}, {"cube", "box:size=0.1x0.1x0.1,cells=1x1x1"}});
-  World world = build_world(scene);
-  const double dt = scene.dt_s;
+  World world = build_world(scene.world);
+  const double dt = scene.world.dt_s;
   Contact c;  // the cube's vertex 0, 1 mm into the floor, moving fast sideways and down
   c.object = 1;
   c.vertex = 0;
@@ -77,8 +77,8 @@ TEST_CASE("flat and sliver tets produce no NaN and are never claimed", "[respons
   // Two good tets, a flat one between them (all in z = 0), a sliver 1e-9 thick.
   const TetMesh odd = build_tet_mesh(x, {{0, 1, 2, 3}, {1, 4, 2, 3}, {0, 1, 4, 2}, {1, 3, 5, 6}});
   REQUIRE(odd.degenerate_tets == 1);
-  SceneDesc scene = test::scene_of({{"probe", "box:size=0.08x0.08x0.08,cells=3x3x3", Vec3(0.04, 0.03, 0.03)}});
-  World world = build_world(scene);
+  test::TestScene scene = test::scene_of({{"probe", "box:size=0.08x0.08x0.08,cells=3x3x3", Vec3(0.04, 0.03, 0.03)}});
+  World world = build_world(scene.world);
   Body body;
   body.name = "odd";
   body.group = "odd";
@@ -89,10 +89,10 @@ TEST_CASE("flat and sliver tets produce no NaN and are never claimed", "[respons
   body.mass_kg = lumped_masses_kg(odd, odd.positions_m, 1000.0);
   body.model = make_elastic_model(odd, odd.positions_m, body.material);
   world.bodies.push_back(std::move(body));
-  scene.objects.push_back(scene.objects[0]);
-  scene.objects.back().name = "odd";
-  auto handler = make_handler("full", scene);
-  handler->init(world, scene);
+  scene.world.objects.push_back(scene.world.objects[0]);
+  scene.world.objects.back().name = "odd";
+  auto handler = make_handler("full");
+  handler->init(world, test::settings_of(world, scene));
   Budget unlimited = Budget::unlimited();
   const StepReport report = handler->step(world, unlimited);
   CHECK(report.colliding_points > 0);
@@ -102,6 +102,6 @@ TEST_CASE("flat and sliver tets produce no NaN and are never claimed", "[respons
   }
   for (const Body& b : world.bodies)
     for (const Vec3& f : b.contact_force_n) REQUIRE(f.allFinite());
-  world.step(scene.dt_s);
+  world.step(scene.world.dt_s);
   CHECK(std::isfinite(world.max_speed_m_per_s()));
 }

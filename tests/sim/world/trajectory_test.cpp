@@ -6,7 +6,7 @@
 
 #include "sim/io/atomic_file.hpp"
 #include "sim/io/input_error.hpp"
-#include "sim/world/scene.hpp"
+#include "sim/world/world_desc.hpp"
 
 using namespace tcb;
 namespace fs = std::filesystem;
@@ -48,7 +48,7 @@ TEST_CASE("trajectory: malformed files name the file and the line", "[trajectory
 }
 
 TEST_CASE("a driven body follows its trajectory with the velocity of that motion, never integrated", "[trajectory]") {
-  SceneDesc scene;
+  WorldDesc scene;
   ObjectDesc probe;
   probe.name = "probe";
   probe.mesh = "box:size=0.1x0.1x0.1,cells=1x1x1";

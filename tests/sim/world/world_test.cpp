@@ -2,14 +2,14 @@
 // stacks touch exactly; ground friction; stability at the extremes.
 #include <catch2/catch.hpp>
 
-#include "sim/world/scene.hpp"
+#include "sim/world/world_desc.hpp"
 
 using namespace tcb;
 
 namespace {
 
-SceneDesc cube_on_ground(double size_m, double youngs_pa, double dt_s, MaterialModel model, Integrator integrator) {
-  SceneDesc scene;
+WorldDesc cube_on_ground(double size_m, double youngs_pa, double dt_s, MaterialModel model, Integrator integrator) {
+  WorldDesc scene;
   scene.dt_s = dt_s;
   scene.ground = GroundPlane{0.0, 0.5};
   ObjectDesc cube;
@@ -52,7 +52,7 @@ TEST_CASE("a cube resting on the ground settles and stays for 1000 steps", "[wor
 }
 
 TEST_CASE("passive bodies are not integrated", "[world]") {
-  SceneDesc scene;
+  WorldDesc scene;
   ObjectDesc wall;
   wall.name = "wall";
   wall.mesh = "box:size=1x1x1,cells=1x1x1";
@@ -68,7 +68,7 @@ TEST_CASE("passive bodies are not integrated", "[world]") {
 }
 
 TEST_CASE("stacked copies touch exactly, face on face", "[world]") {
-  SceneDesc scene;
+  WorldDesc scene;
   ObjectDesc plate;
   plate.name = "plate";
   plate.mesh = "box:size=0.3x0.0137x0.3,cells=3x1x3";  // a thickness with no exact binary form
@@ -95,7 +95,7 @@ TEST_CASE("stacked copies touch exactly, face on face", "[world]") {
 
 TEST_CASE("ground friction stops a sliding block; without friction it slides", "[world]") {
   for (double mu : {0.0, 0.8}) {
-    SceneDesc scene = cube_on_ground(0.1, 1e5, 1e-3, MaterialModel::CorotationalFem, Integrator::ImplicitEuler);
+    WorldDesc scene = cube_on_ground(0.1, 1e5, 1e-3, MaterialModel::CorotationalFem, Integrator::ImplicitEuler);
     scene.ground->friction = mu;
     scene.objects[0].velocity_m_per_s = Vec3(1.0, 0.0, 0.0);
     scene.objects[0].material.damping_mass_per_s = 0.0;
@@ -128,7 +128,7 @@ TEST_CASE("dynamics stay finite at the extremes", "[world][extremes]") {
   };
   for (const Case& c : cases) {
     INFO(c.name);
-    SceneDesc scene = cube_on_ground(c.size_m, c.youngs_pa, c.dt_s, c.model, c.integrator);
+    WorldDesc scene = cube_on_ground(c.size_m, c.youngs_pa, c.dt_s, c.model, c.integrator);
     scene.objects[0].position_m.y() += c.size_m;  // dropped from one size up
     World world = build_world(scene);
     for (int s = 0; s < 300; ++s) world.step(c.dt_s);
@@ -139,7 +139,7 @@ TEST_CASE("dynamics stay finite at the extremes", "[world][extremes]") {
 }
 
 TEST_CASE("a heavy body on a light one: 1000:1 mass ratio stays finite", "[world][extremes]") {
-  SceneDesc scene = cube_on_ground(0.1, 1e5, 1e-3, MaterialModel::CorotationalFem, Integrator::ImplicitEuler);
+  WorldDesc scene = cube_on_ground(0.1, 1e5, 1e-3, MaterialModel::CorotationalFem, Integrator::ImplicitEuler);
   ObjectDesc heavy = scene.objects[0];
   heavy.name = "heavy";
   heavy.material.density_kg_per_m3 = 1.0e6;

@@ -1,4 +1,4 @@
-#include "sim/world/scene.hpp"
+#include "sim/world/world_desc.hpp"
 
 #include <fmt/format.h>
 
@@ -10,7 +10,7 @@
 namespace tcb {
 namespace {
 
-std::shared_ptr<const TetMesh> load_cached(const ObjectDesc& object, const SceneDesc& scene,
+std::shared_ptr<const TetMesh> load_cached(const ObjectDesc& object, const WorldDesc& desc,
                                            std::map<std::string, std::shared_ptr<const TetMesh>>& cache) {
   const std::string key = (object.base_dir / object.mesh).lexically_normal().string();
   if (auto it = cache.find(key); it != cache.end()) return it->second;
@@ -19,8 +19,8 @@ std::shared_ptr<const TetMesh> load_cached(const ObjectDesc& object, const Scene
     cache.emplace(key, mesh);
     return mesh;
   } catch (const InputError& e) {
-    if (e.line() > 0 || scene.path.empty()) throw;  // the mesh file's own line says more
-    throw InputError(scene.path.string(), object.source_line, "object '" + object.name + "': " + e.what());
+    if (e.line() > 0 || desc.path.empty()) throw;  // the mesh file's own line says more
+    throw InputError(desc.path.string(), object.source_line, "object '" + object.name + "': " + e.what());
   }
 }
 
@@ -44,13 +44,13 @@ Body make_body(const std::string& name, const ObjectDesc& object, std::shared_pt
 
 }  // namespace
 
-World build_world(const SceneDesc& scene) {
+World build_world(const WorldDesc& desc) {
   World world;
-  world.gravity_m_per_s2 = scene.gravity_m_per_s2;
-  world.ground = scene.ground;
+  world.gravity_m_per_s2 = desc.gravity_m_per_s2;
+  world.ground = desc.ground;
   std::map<std::string, std::shared_ptr<const TetMesh>> cache;
-  for (const ObjectDesc& object : scene.objects) {
-    const auto mesh = load_cached(object, scene, cache);
+  for (const ObjectDesc& object : desc.objects) {
+    const auto mesh = load_cached(object, desc, cache);
     std::vector<Vec3> scaled(mesh->positions_m.size());
     for (std::size_t i = 0; i < scaled.size(); ++i) scaled[i] = object.scale * mesh->positions_m[i];
     if (!object.trajectory.empty()) {
@@ -58,8 +58,8 @@ World build_world(const SceneDesc& scene) {
       try {
         path = std::make_shared<const Trajectory>(read_trajectory_csv(object.base_dir / object.trajectory));
       } catch (const InputError& e) {
-        if (e.line() > 0 || scene.path.empty()) throw;
-        throw InputError(scene.path.string(), object.source_line, "object '" + object.name + "': " + e.what());
+        if (e.line() > 0 || desc.path.empty()) throw;
+        throw InputError(desc.path.string(), object.source_line, "object '" + object.name + "': " + e.what());
       }
       std::vector<Vec3> x(scaled);
       for (Vec3& p : x) p += path->at(0.0);

@@ -1,8 +1,10 @@
 #pragma once
-/// What a scene asks for, as plain data (parsed from TOML by experiments/),
-/// and build_world(), which builds exactly that and nothing more: only the
-/// named objects, a ground only when the scene has one, no model for passive
-/// objects.
+/// The simulated world a scene asks for, as plain data (parsed from TOML by
+/// experiments/), and build_world(), which builds exactly that and nothing
+/// more: only the named objects, a ground only when the scene has one, no
+/// model for passive objects. Collision handling and the run's own settings
+/// are not here: sim/ cannot interpret them (method/handler/collision_settings.hpp,
+/// experiments/scene/scene_desc.hpp).
 ///
 /// Stacks: an object with stack.count = N > 1 becomes N copies named
 /// NAME_00 .. NAME_{N-1}, placed along stack.axis one extent apart (plus
@@ -17,9 +19,7 @@
 /// them outside from both sides, so those edges would carry no contact.
 
 #include <filesystem>
-#include <map>
 #include <optional>
-#include <variant>
 #include <string>
 #include <vector>
 
@@ -54,53 +54,17 @@ struct ObjectDesc {
   std::string trajectory;
 };
 
-/// Response parameters for one pair of objects ([[collision.pair]]); a name
-/// matches a body or the object a stack was made from.
-struct CollisionPairDesc {
-  std::string a, b;
-  std::optional<double> stiffness_n_per_m, damping_n_s_per_m, friction;
-  int source_line = 0;
-};
-
-/// The [collision] table as plain data; the collision handlers interpret it.
-struct CollisionDesc {
-  std::optional<double> cell_size_m;  ///< nullopt = "auto" (average edge length)
-  std::string hash = "mixed";         ///< "mixed" or "paper" (Teschner et al. 2003)
-  std::size_t table_size = 0;         ///< 0 = automatic (a prime above twice the tet count)
-  double response_stiffness_n_per_m = 1.0e4;
-  double damping_n_s_per_m = 0.0;
-  double friction = 0.3;
-  std::vector<CollisionPairDesc> pairs;
-};
-
-/// Settings of collision handling methods, from top-level tables named after
-/// a method ([every_nth] n = 2, or --set every_nth.n=2). Each value keeps
-/// where it was written, for error messages.
-struct MethodSetting {
-  std::variant<double, bool, std::string> value;
-  std::string where;  ///< "file:line" or "--set key=value"
-};
-using MethodSettings = std::map<std::string, std::map<std::string, MethodSetting>>;
-
-struct SceneDesc {
-  std::string name;
-  std::filesystem::path path;  ///< the scene file (empty when built in code)
-  double dt_s = 1.0e-3;
-  std::int64_t steps = 1000;
+struct WorldDesc {
+  std::filesystem::path path;  ///< the file it came from, for errors (empty when built in code)
+  double dt_s = 1.0e-3;        ///< the step the world is integrated with
   Vec3 gravity_m_per_s2 = Vec3(0.0, -9.81, 0.0);
   std::optional<GroundPlane> ground;
-  CollisionDesc collision;
-  MethodSettings methods;
   std::vector<ObjectDesc> objects;
-  /// A vertex faster than this marks the run unstable (an explosion).
-  double max_speed_m_per_s = 1.0e3;
-  /// [metrics] jitter: the scene's jitter measure ("vertical_velocity_rms"), empty for none.
-  std::string jitter_measure;
 };
 
 /// Loads each distinct mesh once and builds the world. Throws InputError for a
 /// mesh that cannot be loaded (naming the mesh file, or the scene line when
 /// the problem is the source string itself).
-World build_world(const SceneDesc& scene);
+World build_world(const WorldDesc& desc);
 
 }  // namespace tcb

@@ -16,19 +16,19 @@ namespace {
 
 using PointSet = std::set<std::tuple<int, int, int, int>>;  // (object, vertex, other, tet)
 
-PointSet colliding_points(const std::string& method, const SceneDesc& scene, int steps_before) {
-  World world = build_world(scene);
-  auto reference = make_handler("full", scene);
-  reference->init(world, scene);
+PointSet colliding_points(const std::string& method, const test::TestScene& scene, int steps_before) {
+  World world = build_world(scene.world);
+  auto reference = make_handler("full");
+  reference->init(world, test::settings_of(world, scene));
   // Move the world with `full` first so the scenes are not only their initial
   // configuration; every method then sees the same state.
   for (int s = 0; s < steps_before; ++s) {
     Budget b = Budget::unlimited();
     reference->step(world, b);
-    world.step(scene.dt_s);
+    world.step(scene.world.dt_s);
   }
-  auto handler = make_handler(method, scene);
-  handler->init(world, scene);
+  auto handler = make_handler(method);
+  handler->init(world, test::settings_of(world, scene));
   Budget unlimited = Budget::unlimited();
   handler->step(world, unlimited);
   PointSet points;
@@ -36,9 +36,9 @@ PointSet colliding_points(const std::string& method, const SceneDesc& scene, int
   return points;
 }
 
-std::vector<std::pair<std::string, SceneDesc>> scenes() {
+std::vector<std::pair<std::string, test::TestScene>> scenes() {
   const std::string data = TCBENCH_DATA_DIR;
-  std::vector<std::pair<std::string, SceneDesc>> s;
+  std::vector<std::pair<std::string, test::TestScene>> s;
   s.emplace_back("two overlapping boxes",
                  test::scene_of({{"a", "box:size=0.2x0.2x0.2,cells=3x3x3"},
                                  {"b", "box:size=0.2x0.2x0.2,cells=4x2x3", Vec3(0.07, 0.05, 0.03)}}));
@@ -79,7 +79,7 @@ TEST_CASE("the plate stack: the tie-break gives each shared face to one plate", 
   // top vertices are inside the upper plate except the rows on its +x and +z
   // faces (delta points +x, +y, +z): 4 x 4 = 16 per interface, 48 in all, and
   // no upper plate's bottom vertex is inside the plate below.
-  const SceneDesc scene =
+  const test::TestScene scene =
       test::scene_of({{"plate", "box:size=0.3x0.02x0.3,cells=4x2x4", Vec3::Zero(), false, false, 1.0, 4}});
   const PointSet points = colliding_points("full", scene, 0);
   CHECK(points.size() == 48);

@@ -1,0 +1,101 @@
+#include "experiments/metrics/oracle_meter.hpp"
+
+#include <algorithm>
+#include <chrono>
+
+#include "experiments/metrics/distribution.hpp"
+#include "experiments/metrics/oracle_comparison.hpp"
+
+namespace tcb {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+}  // namespace
+
+OracleMeter::OracleMeter(const RunSetup& run) : m_oracle(run.oracle), m_overlap(run.overlap) {
+  if (m_oracle.every > 0) m_triangle_pairs = std::make_unique<SurfaceTrianglePairs>(run.world);
+}
+
+std::vector<ColumnSpec> OracleMeter::columns() const {
+  return {{"oracle_points", "points the oracle finds strictly inside another object"},
+          {"recall", "share of the oracle's inside points the method holds"},
+          {"precision", "share of the method's points (not on a boundary) the oracle finds inside"},
+          {"depth_err_mean", "mean |method depth - true depth| over points both have (m)"},
+          {"depth_err_max", "largest |method depth - true depth| (m)"},
+          {"max_depth", "largest true penetration depth (m)"},
+          {"overlap_volume", "exact overlap volume of all object pairs (m^3); empty when a pair is unmeasurable"},
+          {"triangle_pairs", "intersecting surface triangle pairs (FCL)"},
+          {"oracle_ms", "wall time of the oracle this step (ms); never handling time"}};
+}
+
+void OracleMeter::before_dynamics(StepContext& ctx) {
+  std::optional<double> oracle_ms;
+  if (m_oracle.due(ctx.step)) {
+    const auto t0 = Clock::now();
+    m_frame = compute_inside_oracle(ctx.world);
+    const OracleComparison cmp = compare_with_oracle(ctx.handler.contacts(), m_frame);
+    ctx.row.set("oracle_points", cmp.oracle_points);
+    if (cmp.recall) ctx.row.set("recall", *cmp.recall);
+    if (cmp.precision) ctx.row.set("precision", *cmp.precision);
+    if (cmp.depth_err_mean) ctx.row.set("depth_err_mean", *cmp.depth_err_mean);
+    if (cmp.depth_err_max) ctx.row.set("depth_err_max", *cmp.depth_err_max);
+    ctx.row.set("max_depth", cmp.max_depth_m);
+    ctx.row.set("triangle_pairs", static_cast<std::int64_t>(m_triangle_pairs->find(ctx.world).size()));
+    oracle_ms = ms_since(t0);
+    if (cmp.recall) m_recalls.push_back(*cmp.recall);
+    if (cmp.precision) m_precisions.push_back(*cmp.precision);
+    m_depth_errors.insert(m_depth_errors.end(), cmp.depth_errors.begin(), cmp.depth_errors.end());
+    m_max_depth = std::max(m_max_depth, cmp.max_depth_m);
+    m_unmeasured.insert(m_frame.unmeasured.begin(), m_frame.unmeasured.end());
+    ++m_oracle_steps;
+    ctx.oracle = &m_frame;
+  }
+  if (m_overlap.due(ctx.step)) {
+    const auto t0 = Clock::now();
+    m_overlap_frame = compute_overlap_volumes(ctx.world);
+    ++m_overlap_steps;
+    if (m_overlap_frame.invalid.empty()) {
+      ctx.row.set("overlap_volume", m_overlap_frame.total_m3);
+      m_overlap_max = std::max(m_overlap_max.value_or(0.0), m_overlap_frame.total_m3);
+    } else {
+      ++m_overlap_invalid_steps;  // no value this step: never a silent 0
+      m_unmeasured.insert(m_overlap_frame.invalid.begin(), m_overlap_frame.invalid.end());
+    }
+    oracle_ms = oracle_ms.value_or(0.0) + ms_since(t0);
+    ctx.overlap = &m_overlap_frame;
+  }
+  if (oracle_ms) {
+    ctx.row.set("oracle_ms", *oracle_ms);
+    m_oracle_ms.push_back(*oracle_ms);
+  }
+}
+
+void OracleMeter::summarize(Json& summary) const {
+  // Null when the oracle did not run (or had nothing to compare), never 0.
+  const auto min_of = [](const std::vector<double>& v) -> Json {
+    return v.empty() ? Json(nullptr) : Json(*std::min_element(v.begin(), v.end()));
+  };
+  summary["recall_min"] = min_of(m_recalls);
+  summary["recall_mean"] = m_recalls.empty() ? Json(nullptr) : Json(tcb::summarize(m_recalls).mean);
+  summary["precision_min"] = min_of(m_precisions);
+  if (m_depth_errors.empty()) {
+    summary["depth_err"] = nullptr;
+  } else {
+    const Distribution e = tcb::summarize(m_depth_errors);
+    summary["depth_err"] = {{"mean", e.mean}, {"rms", e.rms}, {"max", e.max}};
+  }
+  summary["max_depth"] = m_oracle_steps > 0 ? Json(m_max_depth) : Json(nullptr);
+  summary["oracle_steps"] = m_oracle_steps;
+  summary["oracle_ms"] = distribution_json(m_oracle_ms);
+  summary["overlap_volume_max"] = m_overlap_max ? Json(*m_overlap_max) : Json(nullptr);
+  summary["overlap_steps"] = m_overlap_steps;
+  summary["overlap_invalid_steps"] = m_overlap_invalid_steps;
+  for (const std::string& reason : m_unmeasured) note_unmeasured(summary, reason);
+}
+
+}  // namespace tcb

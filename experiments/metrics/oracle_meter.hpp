@@ -1,0 +1,48 @@
+#pragma once
+/// The method against the exact oracle (oracle/), on the positions the
+/// handler just saw, on the run's oracle schedules (--oracle, --oracle-volume).
+/// Oracle time is oracle_ms, never handling time.
+///
+/// On oracle steps: the inside sets and true depths (compute_inside_oracle),
+/// compared with the handler's contacts (oracle_comparison.hpp), and the
+/// intersecting surface triangle pairs (FCL). On overlap steps: the exact
+/// overlap volume of all pairs (corefinement; a step whose pairs cannot all
+/// be measured has no value, never a silent 0). The frames are handed to the
+/// meters after this one (StepContext::oracle, ::overlap: latency, tunnelling).
+///
+/// Columns oracle_points, recall, precision, depth_err_mean, depth_err_max,
+/// max_depth, overlap_volume (m^3), triangle_pairs, oracle_ms. Summary
+/// recall_min, recall_mean, precision_min, depth_err {mean, rms, max},
+/// max_depth (m), oracle_steps, oracle_ms, overlap_volume_max (m^3),
+/// overlap_steps, overlap_invalid_steps; null where the oracle never ran.
+
+#include <memory>
+#include <set>
+
+#include "experiments/metrics/meter.hpp"
+#include "oracle/inside_oracle.hpp"
+#include "oracle/overlap_volume.hpp"
+#include "oracle/triangle_pairs.hpp"
+
+namespace tcb {
+
+class OracleMeter final : public Meter {
+ public:
+  explicit OracleMeter(const RunSetup& run);
+  std::vector<ColumnSpec> columns() const override;
+  void before_dynamics(StepContext& ctx) override;
+  void summarize(Json& summary) const override;
+
+ private:
+  OracleSchedule m_oracle, m_overlap;
+  std::unique_ptr<SurfaceTrianglePairs> m_triangle_pairs;
+  OracleFrame m_frame;      // this step's, handed on through StepContext
+  OverlapFrame m_overlap_frame;
+  std::vector<double> m_recalls, m_precisions, m_depth_errors, m_oracle_ms;
+  double m_max_depth = 0.0;
+  std::optional<double> m_overlap_max;
+  std::int64_t m_oracle_steps = 0, m_overlap_steps = 0, m_overlap_invalid_steps = 0;
+  std::set<std::string> m_unmeasured;  // a reason repeats on every step it holds
+};
+
+}  // namespace tcb

@@ -1,0 +1,25 @@
+#include "experiments/metrics/stability_meter.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace tcb {
+
+std::vector<ColumnSpec> StabilityMeter::columns() const {
+  return {{"max_speed", "speed of the fastest vertex after the step (m/s)"}};
+}
+
+void StabilityMeter::on_step(StepContext& ctx) {
+  const double speed = ctx.world.max_speed_m_per_s();
+  ctx.row.set("max_speed", speed);
+  if (std::isnan(speed)) {
+    ++m_nan_steps;
+    ctx.unstable = fmt::format("non-finite position or velocity at step {}", ctx.step);
+  } else if (speed > m_max_speed_m_per_s) {
+    ctx.unstable = fmt::format("a vertex moves at {:.4g} m/s at step {}, above the scene's max_speed {:.4g} m/s",
+                               speed, ctx.step, m_max_speed_m_per_s);
+  }
+}
+
+}  // namespace tcb

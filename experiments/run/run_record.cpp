@@ -1,0 +1,59 @@
+#include "experiments/run/run_record.hpp"
+
+#include <fmt/format.h>
+
+#include "sim/io/atomic_file.hpp"
+
+namespace tcb {
+namespace {
+
+std::vector<ColumnSpec> with_step_columns(const std::vector<ColumnSpec>& columns) {
+  std::vector<ColumnSpec> all = {{"step", "the step just completed (1-based)"},
+                                 {"time_s", "simulated time after the step (s)"}};
+  all.insert(all.end(), columns.begin(), columns.end());
+  return all;
+}
+
+}  // namespace
+
+RunRecord::RunRecord(const std::filesystem::path& dir, const std::vector<ColumnSpec>& columns, int frame_every,
+                     const World& initial)
+    : m_dir((std::filesystem::create_directories(dir), dir)),
+      m_csv(dir / "steps.csv", with_step_columns(columns)),
+      m_frame_every(frame_every) {
+  if (m_frame_every > 0) write_frame(initial);
+}
+
+void RunRecord::write_step(StepRow row, const World& world) {
+  row.set("step", world.step_index);
+  row.set("time_s", world.time_s);
+  m_csv.write(row);
+  if (m_frame_every > 0 && world.step_index % m_frame_every == 0) write_frame(world);
+}
+
+// All bodies of the world as one VTU frame.
+void RunRecord::write_frame(const World& world) {
+  std::vector<Vec3> x, v;
+  std::vector<Tet> tets;
+  for (const Body& b : world.bodies) {
+    const auto offset = static_cast<std::int32_t>(x.size());
+    x.insert(x.end(), b.x_m.begin(), b.x_m.end());
+    v.insert(v.end(), b.v_m_per_s.begin(), b.v_m_per_s.end());
+    for (Tet t : b.mesh->tets) {
+      for (auto& i : t) i += offset;
+      tets.push_back(t);
+    }
+  }
+  std::filesystem::create_directories(m_dir / "frames");
+  const std::string name = fmt::format("frames/frame_{:06d}.vtu", world.step_index);
+  write_vtu(m_dir / name, x, tets, {{"velocity_m_per_s", &v}});
+  m_frames.push_back({world.time_s, name});
+}
+
+void RunRecord::finish(const nlohmann::ordered_json& run) {
+  m_csv.commit();
+  if (!m_frames.empty()) write_pvd(m_dir / "frames.pvd", m_frames);
+  write_file_atomically(m_dir / "run.json", run.dump(2) + "\n");
+}
+
+}  // namespace tcb

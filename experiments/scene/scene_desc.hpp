@@ -1,0 +1,33 @@
+#pragma once
+/// A scene file as plain data (CONTRACT: docs/contract.md "Scene files"): the
+/// world to simulate (sim/), how collisions are handled (method/), the
+/// methods' own settings, and what the run itself needs (length, stability
+/// bound, which scene metrics apply). Read by scene_file.hpp.
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <string>
+
+#include "method/handler/collision_settings.hpp"
+#include "method/handler/method_settings.hpp"
+#include "sim/world/world_desc.hpp"
+
+namespace tcb {
+
+struct SceneDesc {
+  std::string name;
+  std::filesystem::path path;  ///< the scene file (empty when built in code)
+  std::int64_t steps = 1000;
+  WorldDesc world;
+  CollisionDesc collision;
+  /// [method.NAME] tables, checked against each method's schema; a method
+  /// without a table runs with its defaults.
+  std::map<std::string, MethodSettings> methods;
+  /// A vertex faster than this marks the run unstable (an explosion).
+  double max_speed_m_per_s = 1.0e3;
+  /// [metrics] jitter: the scene's jitter measure ("vertical_velocity_rms"), empty for none.
+  std::string jitter_measure;
+};
+
+}  // namespace tcb

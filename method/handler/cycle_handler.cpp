@@ -1,0 +1,35 @@
+#include "method/handler/cycle_handler.hpp"
+
+#include "method/response/penalty_response.hpp"
+
+namespace tcb {
+
+void CycleHandler::init(const World& world, const CollisionSettings& settings) {
+  m_cycle = std::make_unique<CollisionCycle>(world, settings, m_mode);
+}
+
+const std::vector<Contact>& CycleHandler::contacts() const {
+  static const std::vector<Contact> kNone;  // before init()
+  return m_cycle ? m_cycle->contacts() : kNone;
+}
+
+std::uint64_t CycleHandler::run_whole_cycle(World& world, Budget& budget) {
+  Budget unlimited = Budget::unlimited();
+  m_cycle->begin(world);
+  m_cycle->advance(world, unlimited);
+  budget.charge(unlimited.spent());
+  return unlimited.spent();
+}
+
+void CycleHandler::apply_cycle_forces(World& world, StepReport& report) const {
+  for (const Contact& c : m_cycle->contacts()) {
+    if (c.depth_source == DepthSource::None) continue;
+    apply_contact_force(world, c, c.force_n);
+    ++report.exact_forces;
+    report.exact_points.emplace_back(c.object, c.vertex);
+  }
+  report.colliding_points = static_cast<std::int64_t>(m_cycle->contacts().size());
+  report.depth_fallback = m_cycle->depth_fallback();
+}
+
+}  // namespace tcb
