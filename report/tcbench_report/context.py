@@ -1,0 +1,100 @@
+"""What a figure draws with: where to save, how to sign a figure, what a section is."""
+import os
+from dataclasses import dataclass, field
+
+import matplotlib
+
+matplotlib.use("Agg")  # files only: no display on a build machine
+import matplotlib.pyplot as plt  # noqa: E402
+
+from . import pairing  # noqa: E402
+
+FOOTER_CHARS_PER_INCH = 22  # about that many 6 pt characters fit in an inch
+FOOTER_LINE_INCHES = 0.1
+
+
+@dataclass
+class Section:
+    """One figure's entry in the report, drawn or not."""
+    title: str
+    caption: str
+    runs: list = field(default_factory=list)  # the runs it was drawn from
+    image: str = None    # path relative to the report folder, or None when not drawn
+    vector: str = None   # the SVG of the same figure, when there is one
+    missing: str = None  # why it was not drawn
+
+    @property
+    def text(self):
+        return f"Not drawn: {self.missing}" if self.missing else self.caption
+
+
+def provenance(runs):
+    """The builds and machines runs came from, in one line."""
+    def build(r):
+        b = r.record.get("build") or {}
+        return f"{str(b.get('git_sha') or '?')[:10]}{'+dirty' if b.get('dirty') else ''}"
+
+    def machine(r):
+        m = r.record.get("machine") or {}
+        return f"{m.get('cpu', '?')} x{m.get('cores', '?')}"
+
+    if not runs:
+        return "no runs"
+    builds, machines = sorted({build(r) for r in runs}), sorted({machine(r) for r in runs})
+    return f"build {', '.join(builds)}; machine {', '.join(machines)}"
+
+
+def unique(runs):
+    """runs without repeats, in first-seen order (a reference serves several budgeted runs)."""
+    seen = set()
+    return [r for r in runs if not (r.name in seen or seen.add(r.name))]
+
+
+def wrap(text, width):
+    lines, line = [], ""
+    for word in text.split():
+        if line and len(line) + len(word) + 1 > width:
+            lines.append(line)
+            line = word
+        else:
+            line = f"{line} {word}".strip()
+    return lines + [line]
+
+
+class Context:
+    """Shared by all figures of one report: the output folder and every loaded run."""
+
+    def __init__(self, results, out_dir):
+        self.results = results
+        self.out = out_dir
+        self.fig_dir = os.path.join(out_dir, "figures")
+        os.makedirs(self.fig_dir, exist_ok=True)
+
+    @property
+    def runs(self):
+        return self.results.runs
+
+    def reference(self, run):
+        # Searched among all runs: a reference may sit in another sweep than the run.
+        return pairing.reference(run, self.runs)
+
+    def sign(self, fig, title, runs):
+        """Write the title, runs, build and machine under the plot, and lay out around it."""
+        text = f"{title}. Runs: {', '.join(r.name for r in runs)}. {provenance(runs)}."
+        width_in, height_in = fig.get_size_inches()
+        lines = wrap(text, int(width_in * FOOTER_CHARS_PER_INCH))
+        fig.text(0.01, 0.005, "\n".join(lines), fontsize=6, va="bottom", ha="left", color="0.35")
+        reserved = min(0.5, (len(lines) * FOOTER_LINE_INCHES + 0.05) / height_in)
+        fig.tight_layout(rect=(0, reserved, 1, 1))
+
+    def save(self, fig, stem, title, caption, runs):
+        """Sign fig, write it as PNG and SVG, and return its Section."""
+        runs = unique(runs)
+        self.sign(fig, title, runs)
+        for ext in ("png", "svg"):
+            fig.savefig(os.path.join(self.fig_dir, f"{stem}.{ext}"), dpi=110)
+        plt.close(fig)
+        return Section(title, caption, runs, image=f"figures/{stem}.png", vector=f"figures/{stem}.svg")
+
+    def missing(self, title, why):
+        return Section(title, "", [], missing=why)

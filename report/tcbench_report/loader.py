@@ -1,0 +1,168 @@
+"""Results on disk -> Run objects, and which figures each run's sweeps declare.
+
+A results directory holds run folders (run.json + steps.csv) at any depth and,
+for every sweep written into it, a sweep.json naming its runs and the
+scene-specific figures they feed. Nothing here interprets scenes or methods:
+figures and claims select runs by what the run summaries contain.
+"""
+import csv
+import json
+import os
+from dataclasses import dataclass, field
+
+SKIP_DIRS = ("report", "frames")  # our own output and ParaView frames: never results
+
+
+class Run:
+    """One complete run: run.json eagerly, steps.csv only when a figure asks."""
+
+    def __init__(self, directory, record, name):
+        self.dir = directory
+        self.name = name  # path relative to the results directory: unique across sweeps
+        self.record = record
+        self.summary = record.get("summary") or {}
+        self.figures = set()  # scene-specific figures declared by this run's sweeps
+        self.sweeps = set()   # names of the sweeps that list this run
+        self._steps = None
+
+    scene = property(lambda self: self.record.get("scene", ""))
+    method = property(lambda self: self.record.get("method", ""))
+    status = property(lambda self: self.record.get("status", ""))
+    seed = property(lambda self: self.record.get("seed"))
+    # tcbench.run/1 lacked settings and method_label: fall back to the bare method.
+    settings = property(lambda self: self.record.get("settings") or {})
+    method_label = property(lambda self: self.record.get("method_label") or self.method)
+    overrides = property(lambda self: tuple(self.record.get("overrides") or ()))
+    budget = property(lambda self: self.record.get("budget") or {})
+    budget_kind = property(lambda self: self.budget.get("kind") or "none")
+    budget_value = property(lambda self: self.budget.get("value"))
+    budget_label = property(lambda self: self.budget.get("label") or "none")
+
+    def label(self):
+        """Legend text: the method with its non-default settings, and the budget."""
+        return self.method_label if self.budget_kind == "none" else f"{self.method_label} @ {self.budget_label}"
+
+    def metric(self, dotted):
+        """A number from the summary ("handling_ms.p50"), or None when absent or null."""
+        node = self.summary
+        for key in dotted.split("."):
+            if not isinstance(node, dict) or key not in node:
+                return None
+            node = node[key]
+        return node if isinstance(node, (int, float)) and not isinstance(node, bool) else None
+
+    def dynamic_tets(self):
+        """Tetrahedra of the integrated objects: the size a scaling figure plots against."""
+        objects = (self.record.get("world") or {}).get("objects") or []
+        return sum(o.get("tets", 0) for o in objects if not o.get("passive"))
+
+    def has_frames(self):
+        return os.path.exists(os.path.join(self.dir, "frames.pvd"))
+
+    def steps(self):
+        """steps.csv as {column: [float or None]}; {} when the file is missing or unreadable."""
+        if self._steps is None:
+            self._steps = read_steps(os.path.join(self.dir, "steps.csv"))
+        return self._steps
+
+
+def read_steps(path):
+    cols = {}
+    try:
+        with open(path, newline="") as f:
+            reader = csv.reader(f)
+            names = next(reader, [])
+            cols = {n: [] for n in names}
+            for row in reader:
+                if len(row) != len(names):
+                    break  # a truncated last line: keep what is whole
+                for n, v in zip(names, row):
+                    cols[n].append(to_float(v))
+    except (OSError, UnicodeDecodeError):
+        return {}
+    return cols
+
+
+def to_float(text):
+    try:
+        return float(text) if text != "" else None
+    except ValueError:
+        return None
+
+
+@dataclass
+class Sweep:
+    name: str
+    dir: str
+    description: str
+    figures: list
+    runs: list  # absolute run directories
+
+
+@dataclass
+class Results:
+    root: str
+    runs: list = field(default_factory=list)
+    sweeps: list = field(default_factory=list)
+    skipped: list = field(default_factory=list)  # (path, why): shown in the report, never drawn
+
+
+def load(root):
+    """Every complete run and every sweep.json beneath root, runs sorted by name."""
+    results = Results(root)
+    for dirpath, dirnames, filenames in os.walk(root):
+        dirnames[:] = sorted(d for d in dirnames if d not in SKIP_DIRS)
+        if "run.json" in filenames:
+            run, why = read_run(root, dirpath)
+            if run:
+                results.runs.append(run)
+            else:
+                results.skipped.append((os.path.relpath(os.path.join(dirpath, "run.json"), root), why))
+        if "sweep.json" in filenames:
+            sweep, why = read_sweep(dirpath)
+            if sweep:
+                results.sweeps.append(sweep)
+            else:
+                results.skipped.append((os.path.relpath(os.path.join(dirpath, "sweep.json"), root), why))
+    results.runs.sort(key=lambda r: r.name)
+    attach_sweeps(results)
+    return results
+
+
+def read_run(root, directory):
+    try:
+        with open(os.path.join(directory, "run.json")) as f:
+            record = json.load(f)
+    except (OSError, UnicodeDecodeError, ValueError):
+        return None, "not valid JSON (still being written, or cut short)"
+    if not isinstance(record, dict) or not isinstance(record.get("summary"), dict):
+        return None, "no summary (the run did not finish)"
+    return Run(directory, record, os.path.relpath(directory, root)), None
+
+
+def read_sweep(directory):
+    try:
+        with open(os.path.join(directory, "sweep.json")) as f:
+            record = json.load(f)
+    except (OSError, UnicodeDecodeError, ValueError):
+        return None, "not valid JSON"
+    if not isinstance(record, dict) or not isinstance(record.get("runs"), list):
+        return None, "no list of runs"
+    # The sweep's name is its file's stem (experiments/sweeps/paper/1_stack.toml -> 1_stack);
+    # a hand-written sweep.json without a file is named after its folder.
+    source = record.get("file") or os.path.abspath(directory)
+    name = os.path.splitext(os.path.basename(source.rstrip("/")))[0]
+    runs = [os.path.normpath(os.path.join(directory, p)) for p in record["runs"] if isinstance(p, str)]
+    figures = [f for f in record.get("figures") or [] if isinstance(f, str)]
+    return Sweep(name, directory, record.get("description") or "", figures, runs), None
+
+
+def attach_sweeps(results):
+    """Give each run the figures and names of every sweep that lists it."""
+    by_dir = {os.path.realpath(r.dir): r for r in results.runs}
+    for sweep in results.sweeps:
+        for path in sweep.runs:
+            run = by_dir.get(os.path.realpath(path))
+            if run:  # a listed run that failed or is still running is simply absent
+                run.figures.update(sweep.figures)
+                run.sweeps.add(sweep.name)
