@@ -1,5 +1,5 @@
 #pragma once
-/// Exact overlap volume of object pairs (CONTRACT.md column overlap_volume,
+/// Exact overlap volume of object pairs (docs/contract.md column overlap_volume,
 /// summary overlap_volume_max), part of the oracle: CGAL corefinement
 /// (corefine_and_compute_intersection) and PMP::volume with the exact kernel
 /// (Epeck), on the bodies' boundary surfaces at their current positions.

@@ -1,5 +1,5 @@
 #pragma once
-/// Tunnelling (CONTRACT.md summary `tunneling`): object pairs that ended up
+/// Tunnelling (docs/contract.md summary `tunneling`): object pairs that ended up
 /// passing through each other. Part of the oracle: independent of method/.
 ///
 /// A pair (distinct bodies, not both passive) counts when

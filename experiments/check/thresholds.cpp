@@ -41,16 +41,27 @@ std::vector<Threshold> load_thresholds(const std::filesystem::path& path) {
 }
 
 std::vector<CheckRow> check_thresholds(const std::vector<Threshold>& thresholds, const std::filesystem::path& dir) {
-  // Run directories: DIR itself, DIR/*, and DIR/runs/* (a sweep's layout).
+  // Run directories: DIR and every folder beneath it holding a complete
+  // run.json (a sweep's DIR/runs/*, reproduce's DIR/<sweep>/runs/*), named by
+  // their path relative to DIR. Reports and frames are not searched.
   std::vector<std::pair<std::string, nlohmann::json>> runs;
   const auto consider = [&](const std::filesystem::path& d) {
-    if (auto r = read_complete_run(d)) runs.emplace_back(d.filename().string(), std::move(*r));
+    if (auto r = read_complete_run(d)) {
+      const std::string name = d == dir ? d.filename().string() : std::filesystem::relative(d, dir).string();
+      runs.emplace_back(name, std::move(*r));
+    }
   };
   consider(dir);
-  for (const auto& base : {dir, dir / "runs"})
-    if (std::filesystem::is_directory(base))
-      for (const auto& entry : std::filesystem::directory_iterator(base))
-        if (entry.is_directory()) consider(entry.path());
+  if (std::filesystem::is_directory(dir))
+    for (auto it = std::filesystem::recursive_directory_iterator(dir); it != decltype(it){}; ++it) {
+      if (!it->is_directory()) continue;
+      const std::string leaf = it->path().filename().string();
+      if (leaf == "report" || leaf == "frames") {
+        it.disable_recursion_pending();
+        continue;
+      }
+      consider(it->path());
+    }
   std::sort(runs.begin(), runs.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   std::vector<CheckRow> rows;
   for (const Threshold& th : thresholds) {
@@ -58,8 +69,9 @@ std::vector<CheckRow> check_thresholds(const std::vector<Threshold>& thresholds,
     for (const auto& [name, run] : runs) {
       if (run.value("scene", "") != th.scene || run.value("method_label", run.value("method", "")) != th.method)
         continue;
-      if (run["budget"].value("label", "") != th.budget) continue;
-      if (th.seed && run["seed"].get<std::uint64_t>() != *th.seed) continue;
+      const nlohmann::json budget = run.value("budget", nlohmann::json::object());
+      if (budget.value("label", "none") != th.budget) continue;
+      if (th.seed && run.value("seed", std::uint64_t{0}) != *th.seed) continue;
       matched = true;
       CheckRow row{&th, name, summary_metric(run, th.metric), ""};
       const bool ok = row.value && (!th.min || *row.value >= *th.min) && (!th.max || *row.value <= *th.max);

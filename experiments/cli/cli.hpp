@@ -1,5 +1,5 @@
 #pragma once
-/// The tcbench command line (CONTRACT.md "Commands"), callable in-process so
+/// The tcbench command line (docs/contract.md "Commands"), callable in-process so
 /// tests can check exit codes and files.
 /// Exit status: 0 success; 1 a run went unstable (its files are written);
 /// 2 bad input (usage, a malformed or inconsistent file: the message names the

@@ -46,6 +46,7 @@ void LatencyMeter::summarize(Json& summary) const {
   if (m_oracle_every > 1) note_unmeasured(summary, "latency_steps: needs --oracle every (sparse oracle steps merge episodes)");
   if (m_oracle_every != 1) {
     summary["latency_steps"] = nullptr;
+    summary["unserved_penetrations"] = nullptr;  // present, like every key, so summary.csv columns line up
     return;
   }
   const Distribution l = tcb::summarize(m_latencies);

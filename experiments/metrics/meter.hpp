@@ -70,7 +70,7 @@ struct StepContext {
   const OracleFrame* oracle = nullptr;
   const OverlapFrame* overlap = nullptr;
   /// Set by a meter that finds the state unstable: why, in words.
-  std::string unstable;
+  std::string unstable{};
 };
 
 class Meter {

@@ -1,5 +1,5 @@
 #pragma once
-/// A method's colliding points against the oracle's (CONTRACT.md columns
+/// A method's colliding points against the oracle's (docs/contract.md columns
 /// recall, precision, depth_err_mean/max, oracle_points, max_depth).
 ///
 /// Sets are of (object, vertex): M the method's colliding points, O the

@@ -70,24 +70,30 @@ void write_summary_csv(const std::filesystem::path& path, const std::vector<Summ
     c["status"] = rows[i].status;
     if (!rows[i].record) continue;
     const Json& r = *rows[i].record;
-    c["scene"] = r.value("scene", "");
-    c["method"] = r.value("method", "");
-    c["method_label"] = r.value("method_label", c["method"]);
-    c["budget"] = r["budget"].value("label", "");
-    c["budget_kind"] = r["budget"].value("kind", "");
-    c["budget_value"] = r["budget"]["value"].is_null() ? "" : r["budget"]["value"].dump();
-    c["seed"] = r["seed"].dump();
+    // Absent fields (a hand-written or older run.json) give empty cells.
+    const auto field = [&](const Json& j, const char* key) { return j.is_object() ? j.value(key, Json()) : Json(); };
+    const auto text = [](const Json& j) { return j.is_null() ? std::string() : j.is_string() ? j.get<std::string>() : j.dump(); };
+    const Json budget = field(r, "budget");
+    c["scene"] = text(field(r, "scene"));
+    c["method"] = text(field(r, "method"));
+    c["method_label"] = r.contains("method_label") ? text(field(r, "method_label")) : c["method"];
+    c["budget"] = text(field(budget, "label"));
+    c["budget_kind"] = text(field(budget, "kind"));
+    c["budget_value"] = text(field(budget, "value"));
+    c["seed"] = text(field(r, "seed"));
     std::string overrides;
-    for (const auto& o : r["overrides"]) {
-      if (!overrides.empty()) overrides += ';';
-      overrides += o.get<std::string>();
-    }
+    const Json scene_overrides = field(r, "overrides");
+    if (scene_overrides.is_array())
+      for (const auto& o : scene_overrides) {
+        if (!overrides.empty()) overrides += ';';
+        overrides += text(o);
+      }
     c["overrides"] = overrides;
-    c["status"] = r.value("status", "");
-    c["steps"] = r["steps"].dump();
-    c["wall_s"] = r["wall_s"].dump();
+    c["status"] = text(field(r, "status"));
+    c["steps"] = text(field(r, "steps"));
+    c["wall_s"] = text(field(r, "wall_s"));
     std::vector<std::pair<std::string, std::string>> flat;
-    flatten(r["summary"], "", flat);
+    if (const Json summary = field(r, "summary"); summary.is_object()) flatten(summary, "", flat);
     for (const auto& [key, value] : flat) {
       if (!known[key]) metrics.push_back(key), known[key] = true;
       c[key] = value;

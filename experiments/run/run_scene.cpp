@@ -92,7 +92,12 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
     }
     const double handling_ms = ms_since(t_handler);
     StepRow row = record.row();
-    StepContext ctx{world.step_index + 1, world, *handler, report, handling_ms, 0.0, row};
+    StepContext ctx{.step = world.step_index + 1,
+                    .world = world,
+                    .handler = *handler,
+                    .report = report,
+                    .handling_ms = handling_ms,
+                    .row = row};
     for (const auto& m : meters) m->before_dynamics(ctx);
     const auto t_dynamics = Clock::now();
     world.step(scene.world.dt_s);

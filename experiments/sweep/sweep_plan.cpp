@@ -15,16 +15,6 @@
 namespace tcb {
 namespace {
 
-std::optional<double> number_after(const std::string& text, std::size_t prefix) {
-  try {
-    std::size_t used = 0;
-    const double v = std::stod(text.substr(prefix), &used);
-    if (used == text.size() - prefix && std::isfinite(v) && v >= 0.0) return v;
-  } catch (const std::exception&) {
-  }
-  return std::nullopt;
-}
-
 std::string id_part(const std::string& text) {
   std::string out;
   for (const char c : text) {
@@ -41,7 +31,7 @@ std::optional<SweepBudget> parse_sweep_budget(const std::string& label) {
   SweepBudget b;
   b.label = label;
   const auto relative = [&](std::size_t prefix, SweepBudget::Relative kind) -> std::optional<SweepBudget> {
-    const auto k = number_after(label, prefix);
+    const auto k = parse_budget_number(label.substr(prefix));
     if (!k || !(*k > 0.0)) return std::nullopt;
     b.relative = kind;
     b.divisor = *k;
@@ -112,16 +102,20 @@ SweepPlan load_sweep_plan(const std::filesystem::path& path) {
       info = lookup(e.name);
       const MethodSettings settings = read_method_settings(mr, *info);
       mr.finish();
-      for (const SettingSpec& spec : info->settings) {  // only what the entry wrote, in schema order
-        if (!t->contains(spec.name)) continue;
-        const std::string value = format_setting(settings.values().at(spec.name));
-        e.sets.push_back("method." + e.name + "." + spec.name + "=" + value);
+      for (const SettingSpec& spec : info->settings) {  // what differs from the defaults, in schema order
+        const SettingValue& value = settings.values().at(spec.name);
+        if (value == spec.default_value) continue;  // as the run's method_label leaves it out
+        const std::string text = format_setting(value);
+        e.sets.push_back("method." + e.name + "." + spec.name + "=" + text);
         e.id += '_';
-        e.id += id_part(spec.name + "=" + value);
+        e.id += id_part(spec.name + "=" + text);
       }
     } else {
       r.fail("methods", "each entry is a method name or { name = \"NAME\", setting = value }");
     }
+    for (const MethodEntry& earlier : entries)  // the same label twice could not be told apart in results
+      if (earlier.id == e.id)
+        r.fail("methods", "entry " + std::to_string(i) + " repeats an earlier one (same method, same settings)");
     uses_budget[e.id] = info->uses_budget;
     entries.push_back(e);
   }

@@ -1,6 +1,6 @@
 #pragma once
 /// Point-in-tet detection through a spatial hash of the tets (Teschner et al.
-/// 2003, in seed 000's order, which makes one point query the atomic task):
+/// 2003, in the paper's order, which makes one point query the atomic task):
 ///   1. hash_tets(): every non-degenerate tet of every body that has a
 ///      collision partner goes into all cells its AABB covers (one task, not
 ///      interruptible; the AABBs are kept for step 2);

@@ -12,29 +12,26 @@ ClockMs steady_clock_ms() {
   };
 }
 
-namespace {
-
-// The number after a prefix: finite, >= 0, and nothing after it.
-std::optional<double> number_after(const std::string& text, std::size_t prefix) {
-  if (text.size() <= prefix) return std::nullopt;
+std::optional<double> parse_budget_number(const std::string& text) {
+  // Plain decimals only: no sign, exponent, blanks or "inf", so a label means
+  // one thing and is written one way ("work:20000", never "work:2e4").
+  if (text.empty() || text.find_first_not_of("0123456789.") != std::string::npos) return std::nullopt;
   try {
     std::size_t used = 0;
-    const double v = std::stod(text.substr(prefix), &used);
-    if (used == text.size() - prefix && std::isfinite(v) && v >= 0.0) return v;
+    const double v = std::stod(text, &used);
+    if (used == text.size() && std::isfinite(v) && v >= 0.0) return v;
   } catch (const std::exception&) {
   }
   return std::nullopt;
 }
 
-}  // namespace
-
 std::optional<BudgetSpec> BudgetSpec::parse(const std::string& text) {
   if (text == "none") return BudgetSpec{};
   if (text.rfind("ms:", 0) == 0) {
-    const auto v = number_after(text, 3);
+    const auto v = parse_budget_number(text.substr(3));
     if (v) return BudgetSpec{BudgetKind::WallMs, *v};
   } else if (text.rfind("work:", 0) == 0) {
-    const auto v = number_after(text, 5);
+    const auto v = parse_budget_number(text.substr(5));
     if (v && *v == std::floor(*v) && *v < 1.8e19) return BudgetSpec{BudgetKind::Work, *v};
   }
   return std::nullopt;

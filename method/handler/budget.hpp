@@ -1,6 +1,6 @@
 #pragma once
 /// A time budget for one simulation step of collision handling, polled only
-/// at interruption points (seed 000).
+/// at interruption points (the paper).
 ///
 /// Three kinds: unlimited; wall clock (milliseconds from the budget's
 /// creation, on an injectable clock so tests never sleep); work units (each
@@ -58,6 +58,11 @@ class Budget {
   double m_start_ms = 0.0;
   std::uint64_t m_spent = 0;
 };
+
+/// The number grammar of budget labels: a plain decimal >= 0 (digits and at
+/// most one point; no sign, exponent or blanks) filling all of `text`;
+/// std::nullopt otherwise.
+std::optional<double> parse_budget_number(const std::string& text);
 
 /// A budget as asked for, before any step: its kind and value, its one text
 /// form, and the Budget each step starts from. The text forms are "none",

@@ -1,10 +1,10 @@
 #pragma once
-/// One collision cycle (detection, penetration depth, response: seed 000,
+/// One collision cycle (detection, penetration depth, response: the paper,
 /// fig. 2) written once as a sequence of small resumable tasks, so every
 /// handler runs the same algorithm and only the schedule differs.
 ///
 /// Stages and their tasks; the budget is polled after every task (the
-/// interruption points of seed 000):
+/// interruption points of the paper):
 ///   HashTets     all tets into the spatial hash: ONE task, not interruptible,
 ///                done once per cycle and not repeated when resuming
 ///   QueryPoints  one point query per task

@@ -1,6 +1,6 @@
 #pragma once
 /// The interface of every collision handling method: the paper's
-/// interruptible method and every baseline (ARCHITECTURE.md).
+/// interruptible method and every baseline (docs/architecture.md).
 ///
 /// init() receives the collision settings the run resolved once for this
 /// world (collision_settings.hpp; their warnings are the run's to record) and

@@ -1,6 +1,6 @@
 #pragma once
 /// Force extrapolation for points whose collision cycle is incomplete
-/// (seed 000, "response force extrapolation"; METHOD.md s.5).
+/// (the paper, "response force extrapolation"; METHOD.md s.5).
 ///
 /// A point keeps its last two depth-based forces f1 (newest) and f2, the step
 /// f1 was computed in, and n, the length in steps of the cycle that produced

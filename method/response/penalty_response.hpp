@@ -1,5 +1,5 @@
 #pragma once
-/// Penalty response (METHOD.md s.4; seed 000, Heidelberger et al. 2004).
+/// Penalty response (METHOD.md s.4; the paper, Heidelberger et al. 2004).
 ///
 /// Normal force on the colliding point p (of A, inside tet T of B):
 ///   f_n = max(0, c_r d - c v_n) r,   v_n = (v_p - v_T(p)) . r

@@ -1,6 +1,6 @@
 #pragma once
 /// Corotational linear FEM on linear tets (Mueller & Gross, "Interactive
-/// Virtual Materials", GI 2004), the framework of seed 000.
+/// Virtual Materials", GI 2004), the framework of the paper.
 ///
 /// Per element e with rest positions x0_e and linear-elastic stiffness K_e
 /// (12x12, Lame lambda/mu, constant strain), the rotation R_e is extracted from

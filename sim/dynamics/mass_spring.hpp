@@ -1,7 +1,7 @@
 #pragma once
 /// Mass-spring model with volume preservation (Teschner, Heidelberger,
 /// Mueller, Gross, "A Versatile and Robust Model for Geometrically Complex
-/// Deformable Solids", CGI 2004), the model of seed 001.
+/// Deformable Solids", CGI 2004), the model of the student haptic system.
 ///
 /// Energies, with rest edge length l0 and rest tet volume V0:
 ///   edge:   E = 1/2 k_e ((l - l0) / l0)^2

@@ -12,7 +12,7 @@
 /// lowest coordinate on the axis is exactly 0, copy i+1 is placed at
 /// p_{i+1} = p_i + extent, and so the top face of copy i (extent + p_i) and the
 /// bottom face of copy i+1 (0 + p_{i+1}) are the same doubles. This is the
-/// face-on-face stack of seed 000 (plates20), where every step the collision
+/// face-on-face stack of the paper (plates20), where every step the collision
 /// stages meet points exactly on faces. stack.stagger shifts every odd copy
 /// sideways: with side faces exactly aligned too, whole rows of vertices lie
 /// exactly on the neighbour's side faces, where any consistent tie-break puts

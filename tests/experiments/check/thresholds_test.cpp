@@ -20,10 +20,12 @@ namespace {
 fs::path fixture() {
   const fs::path dir = fs::temp_directory_path() / ("tcbench_check_" + std::to_string(::getpid()));
   fs::remove_all(dir);
-  const auto run = [&](const std::string& name, const std::string& method, const std::string& budget, double recall) {
+  const auto run = [&](const std::string& name, const std::string& method, const std::string& budget, double recall,
+                       const std::string& label = "") {
     nlohmann::json j;
     j["scene"] = "plates20";
     j["method"] = method;
+    j["method_label"] = label.empty() ? method : label;
     j["budget"] = {{"kind", "work"}, {"value", 100}, {"label", budget}};
     j["seed"] = 0;
     j["status"] = "ok";
@@ -33,6 +35,8 @@ fs::path fixture() {
   };
   run("a", "full", "none", 1.0);
   run("b", "interruptible", "work:100", 0.8);
+  run("c", "every_nth", "none", 0.5, "every_nth(n=3)");
+  run("d", "every_nth", "none", 0.7);
   return dir;
 }
 
@@ -93,6 +97,37 @@ min = 0.0
   CHECK(rows[2].verdict == "missing");  // no such run
   CHECK(cli({"check", (fs::temp_directory_path() / ("tcbench_thresholds_" + std::to_string(::getpid()) + ".toml")).string(),
              dir.string()}) == 1);
+  // A method's label tells runs with other settings apart.
+  const std::vector<CheckRow> nth = check_thresholds(load_thresholds(thresholds(R"toml([[threshold]]
+scene = "plates20"
+method = "every_nth(n=3)"
+metric = "recall_min"
+min = 0.5
+
+[[threshold]]
+scene = "plates20"
+method = "every_nth"
+metric = "recall_min"
+min = 0.7
+)toml")),
+                                                     dir);
+  REQUIRE(nth.size() == 2);
+  CHECK(nth[0].run == "runs/c");  // named by its path below DIR
+  CHECK(nth[1].run == "runs/d");
+  // reproduce's layout, DIR/<sweep>/runs/<id>: found at any depth; reports are not searched.
+  fs::create_directories(dir / "1_stack" / "runs");
+  fs::rename(dir / "runs" / "c", dir / "1_stack" / "runs" / "c");
+  fs::create_directories(dir / "report" / "x");
+  write_file_atomically(dir / "report" / "x" / "run.json", read_file(dir / "1_stack" / "runs" / "c" / "run.json"));
+  const auto deep = check_thresholds(load_thresholds(thresholds(R"toml([[threshold]]
+scene = "plates20"
+method = "every_nth(n=3)"
+metric = "recall_min"
+min = 0.5
+)toml")),
+                                     dir);
+  REQUIRE(deep.size() == 1);
+  CHECK(deep[0].run == "1_stack/runs/c");
   fs::remove_all(dir);
 }
 

@@ -45,6 +45,19 @@ struct BadCase {
   const char* message;
 };
 
+// The case's text, read as `path`, is rejected with its file, line and message.
+void check_rejected(const BadCase& c, const std::string& path) {
+  INFO(c.name);
+  try {
+    parse_scene(c.text, path, c.overrides);
+    FAIL("accepted: " << c.name);
+  } catch (const InputError& e) {
+    CHECK(e.file() == c.file);
+    CHECK(e.line() == c.line);
+    CHECK_THAT(e.what(), Contains(c.message));
+  }
+}
+
 }  // namespace
 
 TEST_CASE("scene file: every key read", "[scene]") {
@@ -120,17 +133,7 @@ TEST_CASE("scene file: malformed input names the file, the line and the problem"
        "integrates with \"implicit_euler\" only"},
       {"--set into a value", obj, {"object.0.mesh.x=1"}, "--set object.0.mesh.x=1", 0, "not a table"},
   };
-  for (const BadCase& c : cases) {
-    INFO(c.name);
-    try {
-      parse_scene(c.text, "bad.toml", c.overrides);
-      FAIL("accepted: " << c.name);
-    } catch (const InputError& e) {
-      CHECK(e.file() == c.file);
-      CHECK(e.line() == c.line);
-      CHECK_THAT(e.what(), Contains(c.message));
-    }
-  }
+  for (const BadCase& c : cases) check_rejected(c, "bad.toml");
 }
 
 TEST_CASE("scene file: a method's settings in [method.NAME], typed by the method's schema", "[scene]") {
@@ -151,17 +154,7 @@ TEST_CASE("scene file: a method's settings in [method.NAME], typed by the method
       {"old form", obj + "[every_nth]\nn = 2\n", {}, "m.toml", 3, "go in [method.every_nth]"},
       {"--set", obj, {"method.every_nth.n=0"}, "--set method.every_nth.n=0", 0, "must lie in"},
   };
-  for (const BadCase& c : cases) {
-    INFO(c.name);
-    try {
-      parse_scene(c.text, "m.toml", c.overrides);
-      FAIL("accepted");
-    } catch (const InputError& e) {
-      CHECK(e.file() == c.file);
-      CHECK(e.line() == c.line);
-      CHECK_THAT(e.what(), Contains(c.message));
-    }
-  }
+  for (const BadCase& c : cases) check_rejected(c, "m.toml");
 }
 
 TEST_CASE("the committed scenes load and build", "[scene]") {

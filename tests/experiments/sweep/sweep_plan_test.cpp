@@ -31,7 +31,8 @@ TEST_CASE("sweep budgets: absolute and relative labels", "[sweep]") {
   CHECK(parse_sweep_budget("full/3")->relative == SweepBudget::Relative::FullMs);
   CHECK(parse_sweep_budget("full-work/2")->divisor == 2.0);
   CHECK_FALSE(parse_sweep_budget("ms:4.5")->is_relative());
-  for (const char* bad : {"", "ms:", "ms:-1", "work:1.5", "full/0", "full/x", "half", "ms:4.5x", "full-work/-2"})
+  for (const char* bad : {"", "ms:", "ms:-1", "work:1.5", "full/0", "full/x", "half", "ms:4.5x", "full-work/-2",
+                          "work:2e4", "ms: 4", "ms:+4"})
     CHECK_FALSE(parse_sweep_budget(bad).has_value());
 }
 
@@ -132,6 +133,8 @@ TEST_CASE("malformed sweep files are rejected with the file and the line", "[swe
        ":3: methods[0].n: must lie in"},
       {"[sweep]\nscenes = [\"cube_drop\"]\nmethods = [{ name = \"every_nth\", m = 1 }]\nbudgets = [\"none\"]\n",
        ":3: unknown key 'm'"},
+      {"[sweep]\nscenes = [\"cube_drop\"]\nmethods = [\"every_nth\", { name = \"every_nth\", n = 2 }]\nbudgets = [\"none\"]\n",
+       ":3: sweep.methods: entry 1 repeats an earlier one"},
       {"[sweep]\nscenes = [\"cube_drop\"]\nmethods = [\"full\"]\nbudgets = [\"none\"]\nfigures = [\"fig99\"]\n",
        ":5: sweep.figures: no report figure 'fig99'"},
   };

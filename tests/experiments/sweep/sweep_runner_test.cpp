@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "experiments/results/summary_csv.hpp"
+#include <nlohmann/json.hpp>
 #include "sim/io/atomic_file.hpp"
 
 using namespace tcb;
@@ -30,6 +31,7 @@ methods = ["full", "interruptible"]
 budgets = ["work:20000", "full-work/2"]
 seeds = [0, 1, 2]
 steps = 400
+figures = ["jitter"]
 )");
   const SweepPlan plan = load_sweep_plan(file);
   REQUIRE(plan.runs.size() == 9);
@@ -95,5 +97,11 @@ steps = 400
   CHECK((*relative)["budget"]["label"] == "full-work/2");
   CHECK((*relative)["budget"]["kind"] == "work");
   CHECK((*relative)["budget"]["value"].get<double>() >= 1.0);
+  // sweep.json tells the report which runs the sweep made and which figures they feed.
+  const auto sweep = nlohmann::json::parse(read_file(out / "sweep.json"));
+  CHECK(sweep["schema"] == "tcbench.sweep/1");
+  CHECK(sweep["figures"] == nlohmann::json::array({"jitter"}));
+  REQUIRE(sweep["runs"].size() == 9);
+  for (const auto& run : sweep["runs"]) CHECK(read_complete_run(out / run.get<std::string>()).has_value());
   fs::remove_all(root);
 }
