@@ -2,8 +2,9 @@
 /// The list of collision handling methods: what `tcbench list methods` prints,
 /// what `--method` accepts, what sweeps iterate over, and what the
 /// cross-method tests check (every method, unlimited budget, must find exactly
-/// brute_force's colliding points). Adding a method: one file in baselines/
-/// (or method/) and one entry in registry.cpp.
+/// brute_force's colliding points). Adding a method: its files in baselines/
+/// (compiled by glob), one entry in registry.cpp, and its row (and its
+/// settings' rows) in docs/contract.md, which a test checks.
 
 #include <functional>
 #include <memory>

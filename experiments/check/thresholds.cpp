@@ -1,5 +1,7 @@
 #include "experiments/check/thresholds.hpp"
 
+#include "experiments/sweep/sweep_plan.hpp"
+
 #include "experiments/results/summary_csv.hpp"
 #include "experiments/scene/toml_table_reader.hpp"
 
@@ -29,6 +31,10 @@ std::vector<Threshold> load_thresholds(const std::filesystem::path& path) {
     th.method = need("method");
     th.metric = need("metric");
     th.budget = r.string("budget").value_or("none");
+    // The label as run.json records it: absolute budgets in their one
+    // spelling, relative ones (full/3) as written; anything else is a typo.
+    if (const auto b = parse_sweep_budget(th.budget)) th.budget = b->label;
+    else r.fail("budget", "'" + th.budget + "' is not none, ms:X, work:N, full/K or full-work/K");
     if (const auto seed = r.integer("seed", 0, std::int64_t{1} << 62)) th.seed = static_cast<std::uint64_t>(*seed);
     th.min = r.number("min");
     th.max = r.number("max");

@@ -7,6 +7,7 @@ namespace tcb {
 std::vector<ColumnSpec> DynamicsMeter::columns() const {
   return {{"kinetic_energy", "kinetic energy of the dynamic bodies after the step (J)"},
           {"dynamics_ms", "wall time of integrating the world (ms)"},
+          {"max_speed", "speed of the fastest vertex after the step (m/s)"},
           {"solver_iterations", "linear solver iterations this step, summed over the bodies"}};
 }
 
@@ -19,6 +20,7 @@ void DynamicsMeter::on_step(StepContext& ctx) {
   }
   ctx.row.set("kinetic_energy", ctx.world.kinetic_energy_j());
   ctx.row.set("dynamics_ms", ctx.dynamics_ms);
+  ctx.row.set("max_speed", ctx.world.max_speed_m_per_s());
   ctx.row.set("solver_iterations", iterations);
   m_dynamics_ms.push_back(ctx.dynamics_ms);
   m_iterations.push_back(static_cast<double>(iterations));

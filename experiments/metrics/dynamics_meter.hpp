@@ -1,6 +1,7 @@
 #pragma once
 /// The simulated world itself: integration time, energy, solver effort.
 /// Columns kinetic_energy (J, dynamic bodies), dynamics_ms (ms, world.step),
+/// max_speed (m/s, the fastest vertex; NaN when a state is not finite),
 /// solver_iterations (CG iterations summed over the bodies). Summary
 /// dynamics_ms {mean, p50, p95, p99, max}, kinetic_energy_final (J), solver
 /// {iterations_mean, iterations_max, unconverged_steps}.

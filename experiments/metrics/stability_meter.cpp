@@ -6,13 +6,8 @@
 
 namespace tcb {
 
-std::vector<ColumnSpec> StabilityMeter::columns() const {
-  return {{"max_speed", "speed of the fastest vertex after the step (m/s)"}};
-}
-
 void StabilityMeter::on_step(StepContext& ctx) {
   const double speed = ctx.world.max_speed_m_per_s();
-  ctx.row.set("max_speed", speed);
   if (std::isnan(speed)) {
     ++m_nan_steps;
     ctx.unstable = fmt::format("non-finite position or velocity at step {}", ctx.step);

@@ -2,7 +2,7 @@
 /// Whether the run is still sane after each step: a non-finite position or
 /// velocity, or a vertex faster than the scene's max_speed, marks it
 /// unstable (StepContext::unstable; the run stops and keeps its files).
-/// Column max_speed (m/s, the fastest vertex). Summary nan_steps.
+/// Summary nan_steps (the speed itself is the dynamics meter's column).
 
 #include "experiments/metrics/meter.hpp"
 
@@ -11,7 +11,6 @@ namespace tcb {
 class StabilityMeter final : public Meter {
  public:
   explicit StabilityMeter(const RunSetup& run) : m_max_speed_m_per_s(run.scene.max_speed_m_per_s) {}
-  std::vector<ColumnSpec> columns() const override;
   void on_step(StepContext& ctx) override;
   void summarize(Json& summary) const override { summary["nan_steps"] = m_nan_steps; }
 

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 namespace tcb {
 
 MethodSettings read_method_settings(TableReader& reader, const MethodInfo& method) {
@@ -9,8 +11,9 @@ MethodSettings read_method_settings(TableReader& reader, const MethodInfo& metho
   for (const SettingSpec& spec : method.settings) {
     switch (spec.type) {
       case SettingSpec::Type::Integer:
-        if (const auto v = reader.integer(spec.name, static_cast<std::int64_t>(spec.min),
-                                          static_cast<std::int64_t>(spec.max)))
+        // The schema's range clamped to what an int64 holds (the defaults are +-1e300).
+        if (const auto v = reader.integer(spec.name, static_cast<std::int64_t>(std::clamp(spec.min, -9.0e18, 9.0e18)),
+                                          static_cast<std::int64_t>(std::clamp(spec.max, -9.0e18, 9.0e18))))
           settings.set(spec.name, *v);
         break;
       case SettingSpec::Type::Number:

@@ -42,6 +42,7 @@ std::optional<SweepBudget> parse_sweep_budget(const std::string& label) {
   const auto absolute = BudgetSpec::parse(label);
   if (!absolute) return std::nullopt;
   b.absolute = *absolute;
+  b.label = absolute->label();  // one spelling: "ms:4.50" is recorded as "ms:4.5"
   return b;
 }
 

@@ -23,7 +23,14 @@ std::string format_setting(const SettingValue& value) {
       [](const auto& v) -> std::string {
         using T = std::decay_t<decltype(v)>;
         if constexpr (std::is_same_v<T, bool>) return v ? "true" : "false";
-        else if constexpr (std::is_same_v<T, std::string>) return fmt::format("\"{}\"", v);
+        else if constexpr (std::is_same_v<T, std::string>) {  // a TOML basic string
+          std::string quoted = "\"";
+          for (const char c : v) {
+            if (c == '"' || c == '\\') quoted += '\\';
+            quoted += c;
+          }
+          return quoted + "\"";
+        }
         else return fmt::format("{}", v);
       },
       value);

@@ -1,4 +1,4 @@
-// Every committed scene loads, warns only as documented, and runs a few steps
+// Every committed scene (experiments/scenes/*.toml) loads and runs a few steps
 // with full; the haptic probe reports a force once it touches the cow.
 #include <catch2/catch.hpp>
 
