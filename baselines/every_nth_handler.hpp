@@ -3,7 +3,9 @@
 /// alternative, n = 2 there), and in between either the last cycle's forces
 /// again (hold = true, the default) or no collision forces at all
 /// (hold = false). Settings: [method.every_nth] n = 2, hold = true
-/// (or --set method.every_nth.n=2).
+/// (or --set method.every_nth.n=2). Under implicit response what is held is
+/// the last cycle's contacts as links (their depths as computed then, the
+/// damper with the current velocities); under explicit response, their forces.
 
 #include "method/handler/cycle_handler.hpp"
 

@@ -1,11 +1,13 @@
 #include "experiments/metrics/meters.hpp"
 
+#include "experiments/metrics/contact_solve_meter.hpp"
 #include "experiments/metrics/dynamics_meter.hpp"
 #include "experiments/metrics/handling_meter.hpp"
 #include "experiments/metrics/jitter.hpp"
 #include "experiments/metrics/latency.hpp"
 #include "experiments/metrics/oracle_meter.hpp"
 #include "experiments/metrics/probe_force_meter.hpp"
+#include "experiments/metrics/settled_meter.hpp"
 #include "experiments/metrics/stability_meter.hpp"
 #include "experiments/metrics/top_centre_meter.hpp"
 #include "experiments/metrics/tunneling_meter.hpp"
@@ -25,6 +27,8 @@ std::vector<std::unique_ptr<Meter>> make_meters(const RunSetup& run) {
   meters.push_back(std::make_unique<JitterMeter>(run));
   meters.push_back(std::make_unique<TopCentreMeter>(run));
   meters.push_back(std::make_unique<ProbeForceMeter>());
+  meters.push_back(std::make_unique<ContactSolveMeter>());
+  meters.push_back(std::make_unique<SettledMeter>(run));
   return meters;
 }
 

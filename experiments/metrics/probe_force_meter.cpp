@@ -11,8 +11,7 @@ std::vector<ColumnSpec> ProbeForceMeter::columns() const {
           {"probe_force_z", "contact force on the driven objects, z (N)"}};
 }
 
-void ProbeForceMeter::before_dynamics(StepContext& ctx) {
-  // Read before world.step(), which clears the contact forces.
+void ProbeForceMeter::on_step(StepContext& ctx) {
   const auto force = ctx.world.driven_contact_force_n();
   if (!force) return;
   ctx.row.set("probe_force_x", force->x());

@@ -1,6 +1,7 @@
 #pragma once
-/// The force a haptic device would render: the contact force on the driven
-/// objects after handling (World::driven_contact_force_n), N.
+/// The force a haptic device would render: the contact force the step
+/// actually applied to the driven objects (World::driven_contact_force_n:
+/// explicit forces and, under implicit response, the solved link forces), N.
 /// Columns probe_force_x, probe_force_y, probe_force_z (empty without a driven
 /// object). Summary probe_force_max (largest |F|, N) and
 /// probe_force_change_rms: the root mean square of |F| at step i+1 minus |F|
@@ -17,7 +18,7 @@ namespace tcb {
 class ProbeForceMeter final : public Meter {
  public:
   std::vector<ColumnSpec> columns() const override;
-  void before_dynamics(StepContext& ctx) override;
+  void on_step(StepContext& ctx) override;
   void summarize(Json& summary) const override;
 
  private:

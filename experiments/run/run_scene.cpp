@@ -136,6 +136,7 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
   run["steps"] = outcome.steps_done;
   run["steps_requested"] = steps_total;
   run["dt"] = scene.world.dt_s;
+  run["response"] = scene.collision.response_mode == ResponseMode::Implicit ? "implicit" : "explicit";
   run["seed"] = options.seed;
   run["oracle"] = setup.oracle.label();
   run["oracle_volume"] = setup.overlap.label();

@@ -233,6 +233,11 @@ SceneDesc parse_scene(const std::string& text, const std::filesystem::path& path
         r.non_negative("response_stiffness", scene.collision.response_stiffness_n_per_m);
     scene.collision.damping_n_s_per_m = r.non_negative("damping", scene.collision.damping_n_s_per_m);
     scene.collision.friction = r.non_negative("friction", scene.collision.friction);
+    if (const auto response = r.string("response")) {
+      if (*response == "implicit") scene.collision.response_mode = ResponseMode::Implicit;
+      else if (*response == "explicit") scene.collision.response_mode = ResponseMode::Explicit;
+      else r.fail("response", "must be \"implicit\" or \"explicit\"");
+    }
     if (const toml::node* pairs = r.node("pair")) {
       const toml::array* array = pairs->as_array();
       if (!array || !array->is_array_of_tables()) r.fail("pair", "must be an array of tables: write [[collision.pair]]");

@@ -114,7 +114,10 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
               m_lookup[c.object][c.vertex] = -1;
             }
           }
-          if (!c.separated) work += border_point_depth(world, c, m_contacts, m_lookup, m_surface);
+          if (!c.separated) {
+            work += border_point_depth(world, c, m_contacts, m_lookup, m_surface);
+            c.depth_offset_m = contact_offset_m(world, c);
+          }
         }
         if (m_cursor == m_contacts.size()) enter(Stage::Propagate, world);
         break;
@@ -122,6 +125,7 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
         if (m_cursor < m_layer_items.size()) {
           Contact& c = m_contacts[m_layer_items[m_cursor++]];
           work = propagate_depth(world, c, m_contacts, m_lookup, m_layer);
+          c.depth_offset_m = contact_offset_m(world, c);
         }
         if (m_cursor == m_layer_items.size()) {
           build_next_layer(world);

@@ -24,6 +24,14 @@ CollisionSettings resolve_collision_settings(const World& world, const Collision
   s.detection.table_size = desc.table_size;
   s.detection.hash = desc.hash;
   s.dt_s = dt_s;
+  s.response_mode = desc.response_mode;
+  if (s.response_mode == ResponseMode::Implicit)
+    for (const Body& b : world.bodies)
+      if (!b.passive && b.material.model == MaterialModel::MassSpring && b.material.integrator != Integrator::EulerCromer)
+        throw InputError(file, 0,
+                         "collision.response = \"implicit\" puts contacts into a linear step, which object '" + b.name +
+                             "' (mass_spring with " + to_string(b.material.integrator) +
+                             ") does not have: use integrator = \"euler_cromer\" or collision.response = \"explicit\"");
   s.body_count = world.bodies.size();
   const ResponseParams defaults{desc.response_stiffness_n_per_m, desc.damping_n_s_per_m, desc.friction};
   s.pair_response.assign(s.body_count * s.body_count, defaults);
@@ -48,8 +56,10 @@ CollisionSettings resolve_collision_settings(const World& world, const Collision
                        "collision.pair names no object '" + (found_a ? pair.b : pair.a) + "'");
   }
 
-  // Penalty forces are explicit: a spring of stiffness k on mass m is stable
-  // only for k < 4 m / dt^2. Check each colliding pair's lightest vertex.
+  // Explicit penalty forces: a spring of stiffness k on mass m is stable only
+  // for k < 4 m / dt^2. Check each colliding pair's lightest vertex. Implicit
+  // response has no such bound.
+  if (s.response_mode == ResponseMode::Implicit) return s;
   const CollisionPairs pairs(world);
   std::vector<double> lightest(s.body_count, 0.0);
   for (std::size_t b = 0; b < s.body_count; ++b) {

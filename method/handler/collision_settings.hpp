@@ -33,17 +33,21 @@ struct CollisionDesc {
   double response_stiffness_n_per_m = 1.0e4;
   double damping_n_s_per_m = 0.0;
   double friction = 0.3;
+  /// How penalty forces are integrated (penalty_response.hpp): implicitly with
+  /// the bodies (default) or as explicit external forces (the method before).
+  ResponseMode response_mode = ResponseMode::Implicit;
   std::vector<CollisionPairDesc> pairs;
 };
 
 struct CollisionSettings {
   DetectionSettings detection;
   double dt_s = 1.0e-3;  ///< the scene's step: bounds explicit damping and friction
+  ResponseMode response_mode = ResponseMode::Implicit;
   std::size_t body_count = 0;
   std::vector<ResponseParams> pair_response;  ///< body_count^2, symmetric
-  /// Settings that are allowed but likely to misbehave, in words (e.g. a
-  /// response stiffness above the explicit stability bound 4 m / dt^2 of the
-  /// lightest vertex of a colliding pair). The run records them.
+  /// Settings that are allowed but likely to misbehave, in words (e.g. under
+  /// explicit response, a response stiffness above the stability bound
+  /// 4 m / dt^2 of the lightest vertex of a colliding pair). The run records them.
   std::vector<std::string> warnings;
   const ResponseParams& response(std::size_t a, std::size_t b) const { return pair_response[a * body_count + b]; }
 };
@@ -52,7 +56,9 @@ struct CollisionSettings {
 double average_edge_length(const World& world);
 
 /// Resolves `desc` for `world` stepped with dt_s. InputError naming `file` and
-/// the pair's line when a [[collision.pair]] names no body.
+/// the pair's line when a [[collision.pair]] names no body, and naming `file`
+/// when implicit response meets a body whose integrator has no linear step
+/// (mass_spring with verlet).
 CollisionSettings resolve_collision_settings(const World& world, const CollisionDesc& desc, double dt_s,
                                              const std::string& file = "scene");
 

@@ -11,6 +11,10 @@
 #include "sim/mesh/tet_mesh.hpp"
 
 namespace tcb {
+class World;
+}
+
+namespace tcb {
 
 enum class DepthSource : std::uint8_t {
   None,        ///< not known (yet); no depth-based force
@@ -28,7 +32,19 @@ struct Contact {
   bool separated = false;               ///< re-checked in a later step and found outside: inert
   double depth_m = 0.0;
   Vec3 direction = Vec3::Zero();        ///< unit; pushes the point out of `other`
+  /// r0 = x_point - x_tet(barycentric) when the depth was computed (m): a
+  /// later step tracks the depth as depth_m - (r - r0) . direction.
+  Vec3 depth_offset_m = Vec3::Zero();
   Vec3 force_n = Vec3::Zero();          ///< on the point; the reaction goes to the tet
 };
+
+/// x_point - x_tet(barycentric) with the world's current positions (m): zero
+/// while the point sits where it was detected in the tet.
+Vec3 contact_offset_m(const World& world, const Contact& contact);
+
+/// The contact's depth carried to the current positions: depth_m minus how far
+/// the point has moved out along direction, relative to the tet, since the
+/// depth was computed (m; <= 0 once it has left along the normal).
+double tracked_depth_m(const World& world, const Contact& contact);
 
 }  // namespace tcb

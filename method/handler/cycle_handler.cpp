@@ -24,12 +24,18 @@ std::uint64_t CycleHandler::run_whole_cycle(World& world, Budget& budget) {
 void CycleHandler::apply_cycle_forces(World& world, StepReport& report) const {
   for (const Contact& c : m_cycle->contacts()) {
     if (c.depth_source == DepthSource::None) continue;
-    apply_contact_force(world, c, c.force_n);
+    apply_depth_contact(world, c, c.force_n);
     ++report.exact_forces;
     report.exact_points.emplace_back(c.object, c.vertex);
   }
   report.colliding_points = static_cast<std::int64_t>(m_cycle->contacts().size());
   report.depth_fallback = m_cycle->depth_fallback();
+}
+
+void CycleHandler::apply_depth_contact(World& world, const Contact& c, const Vec3& explicit_force_n) const {
+  const CollisionSettings& s = m_cycle->settings();
+  if (s.response_mode == ResponseMode::Explicit) apply_contact_force(world, c, explicit_force_n);
+  else add_contact_link(world, c, s.response(c.object, c.other), s.dt_s);
 }
 
 }  // namespace tcb

@@ -25,10 +25,15 @@ class CycleHandler : public CollisionHandler {
   /// Starts a new cycle and runs it to the end with an unlimited budget; its
   /// work is charged to `budget` (and returned), which is never obeyed.
   std::uint64_t run_whole_cycle(World& world, Budget& budget);
-  /// Applies every depth-based force of the cycle's contacts to the world and
+  /// Applies every depth-based contact of the cycle to the world (its stored
+  /// force under explicit response, its link under implicit response) and
   /// fills the report's counts (exact_forces, exact_points, colliding_points,
   /// depth_fallback).
   void apply_cycle_forces(World& world, StepReport& report) const;
+  /// One depth-based contact, as the response mode wants it: `explicit_force_n`
+  /// under explicit response; under implicit response a link of the contact's
+  /// depth (and its friction as a force).
+  void apply_depth_contact(World& world, const Contact& contact, const Vec3& explicit_force_n) const;
 
   CollisionCycle& mutable_cycle() { return *m_cycle; }
 

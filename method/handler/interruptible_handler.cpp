@@ -3,33 +3,30 @@
 #include "method/response/penalty_response.hpp"
 
 namespace tcb {
-namespace {
-
-Vec3 tet_point_m(const World& world, const Contact& c) {
-  const Body& B = world.bodies[c.other];
-  const Tet& t = B.mesh->tets[c.tet];
-  Vec3 x = Vec3::Zero();
-  for (int k = 0; k < 4; ++k) x += c.barycentric[k] * B.x_m[t[k]];
-  return x;
-}
-
-}  // namespace
-
 std::optional<InterruptibleHandler::StaleForce> InterruptibleHandler::stale_force(const World& world,
                                                                                   std::int32_t object,
                                                                                   std::int32_t vertex) {
   if (!m_has_history[object][vertex] || m_stale == Stale::Nothing) return std::nullopt;
   if (m_stale == Stale::Extrapolate) {
     ForceHistory& h = m_history[object][vertex];
-    return StaleForce{&h.contact, extrapolated_force(h, m_step)};
+    return StaleForce{h.contact, extrapolated_force(h, m_step), false};
   }
-  const Tracked& t = m_tracked[object][vertex];
-  Contact now = t.contact;
-  const Vec3 offset = world.bodies[object].x_m[vertex] - tet_point_m(world, now);
-  now.depth_m = t.contact.depth_m - (offset - t.offset_m).dot(now.direction);
+  Contact now = m_tracked[object][vertex];
+  now.depth_m = tracked_depth_m(world, now);
   if (!(now.depth_m > 0.0)) return std::nullopt;  // tracked out of contact
-  return StaleForce{&t.contact, penalty_force(world, now, cycle().settings().response(now.object, now.other),
-                                              cycle().settings().dt_s)};
+  return StaleForce{now, penalty_force(world, now, cycle().settings().response(now.object, now.other), cycle().settings().dt_s),
+                    true};
+}
+
+void InterruptibleHandler::apply_stale(World& world, const StaleForce& f) const {
+  // A tracked depth is a depth-based force of the current positions; an
+  // extrapolated force is an estimate. Under implicit response either becomes
+  // a link (the estimate's normal part as an equivalent depth), so its spring
+  // and damper are integrated implicitly. Either reaction goes to the tet
+  // where the point's force last acted.
+  if (f.tracked) apply_depth_contact(world, f.where, f.force_n);
+  else if (cycle().settings().response_mode == ResponseMode::Explicit) apply_contact_force(world, f.where, f.force_n);
+  else add_force_link(world, f.where, f.force_n, cycle().settings().response(f.where.object, f.where.other));
 }
 
 void InterruptibleHandler::init(const World& world, const CollisionSettings& settings) {
@@ -63,16 +60,24 @@ StepReport InterruptibleHandler::step(World& world, Budget& budget) {
     m_applied[c.object][c.vertex] = m_step;  // decided here, so the history loop below leaves it alone
     if (c.separated) continue;               // left the object since detection: no force
     if (c.depth_source != DepthSource::None) {
-      const Vec3 f = i < with_force ? c.force_n
-                                    : penalty_force(world, c, cycle().settings().response(c.object, c.other),
-                                                    cycle().settings().dt_s);
-      apply_contact_force(world, c, f);
+      const ResponseParams& params = cycle().settings().response(c.object, c.other);
+      if (m_stale == Stale::Track) {
+        // The depth carried from the step it was computed in to the current
+        // positions (unchanged within that step), and remembered with its r0.
+        m_tracked[c.object][c.vertex] = c;
+        Contact now = c;
+        now.depth_m = tracked_depth_m(world, c);
+        if (!(now.depth_m > 0.0)) continue;  // moved out along the normal since: no force
+        apply_depth_contact(world, now, penalty_force(world, now, params, cycle().settings().dt_s));
+      } else {
+        const Vec3 f = i < with_force ? c.force_n : penalty_force(world, c, params, cycle().settings().dt_s);
+        apply_depth_contact(world, c, f);
+      }
       ++report.exact_forces;
       report.exact_points.emplace_back(c.object, c.vertex);
-      if (m_stale == Stale::Track) m_tracked[c.object][c.vertex] = {c, world.bodies[c.object].x_m[c.vertex] - tet_point_m(world, c)};
     } else if (!done) {
       if (const auto f = stale_force(world, c.object, c.vertex)) {
-        apply_contact_force(world, *f->where, f->force_n);  // the reaction goes where the force last acted
+        apply_stale(world, *f);
         ++report.estimated_forces;
       }
     }
@@ -84,7 +89,7 @@ StepReport InterruptibleHandler::step(World& world, Budget& budget) {
         if (!m_has_history[b][v] || m_applied[b][v] == m_step) continue;
         const auto object = static_cast<std::int32_t>(b), vertex = static_cast<std::int32_t>(v);
         if (const auto f = stale_force(world, object, vertex)) {
-          apply_contact_force(world, *f->where, f->force_n);
+          apply_stale(world, *f);
           ++report.estimated_forces;
         }
       }

@@ -18,17 +18,26 @@
 /// When a cycle completes, its depth-based forces enter the history and points
 /// it no longer finds are forgotten.
 ///
-/// `interruptible_tracked` (a variant, not in the paper) replaces the force
-/// extrapolation: a point with a depth-based force from an earlier step keeps
-/// that contact (tet, barycentric position, direction n, depth d0) and the
-/// offset r0 = x_point - x_tet(barycentric) of the step the force was applied.
-/// In a later step whose cycle has no depth for it yet, its depth is tracked
-/// with the current positions, d = d0 - (r - r0) . n, and it gets the penalty
-/// force of that depth with the current velocities (none once d <= 0). This
-/// removes the delay for contacts that persist; new contacts still wait for
-/// their cycle. Cost: one tet interpolation per such point per step (not
-/// charged to the budget, like the extrapolation). With an unlimited budget every cycle
-/// completes within its step and the forces are bit for bit those of `full`.
+/// `interruptible_tracked` (a variant, not in the paper) tracks depths instead
+/// of extrapolating forces. Every depth keeps the offset r0 = x_point -
+/// x_tet(barycentric) of the step in which it was computed (Contact::
+/// depth_offset_m), and in any later step it is carried to the current
+/// positions, d = d0 - (r - r0) . n (tracked_depth_m); the point gets the
+/// penalty force of d with the current velocities, none once d <= 0. This
+/// holds both for depths of the current cycle computed in an earlier step of
+/// it and, while the cycle has no depth for the point yet, for its last
+/// depth-based contact. It removes the delay for contacts that persist; new
+/// contacts still wait for their cycle. Tracked forces are depth-based, so
+/// under implicit response they are links like any other. Cost: one tet
+/// interpolation per such point per step (not charged to the budget, like the
+/// extrapolation). With an unlimited budget every depth is used in the step
+/// it was computed in (d = d0) and the forces are bit for bit those of `full`.
+///
+/// Under implicit response (collision_settings.hpp) every force above is a
+/// link solved with the bodies: depth-based ones with their depth, an
+/// extrapolated one with the equivalent depth of its normal part
+/// (add_force_link), so the contact's spring and damper are integrated
+/// implicitly whatever the force's source.
 /// contacts() is the last completed cycle's colliding points.
 
 #include <memory>
@@ -49,24 +58,22 @@ class InterruptibleHandler final : public CycleHandler {
   const std::vector<Contact>& contacts() const override { return m_completed; }
 
  private:
-  struct Tracked {
-    Contact contact;  ///< the last depth-based contact: tet, barycentric, direction, depth d0
-    Vec3 offset_m = Vec3::Zero();  ///< r0 = x_point - x_tet(barycentric) when its force was applied
-  };
-  /// The stale force of a point (extrapolated, tracked, or none) and the
-  /// contact whose tet takes its reaction.
+  /// The stale force of a point (extrapolated, or of its tracked depth) and
+  /// the contact whose tet takes its reaction.
   struct StaleForce {
-    const Contact* where;
+    Contact where;  ///< for a tracked force: the contact with its depth carried to now
     Vec3 force_n;
+    bool tracked;
   };
   std::optional<StaleForce> stale_force(const World& world, std::int32_t object, std::int32_t vertex);
+  void apply_stale(World& world, const StaleForce& force) const;
 
   Stale m_stale;
   bool m_in_progress = false;
   std::int64_t m_step = 0, m_cycle_start = 0;
   std::vector<std::vector<ForceHistory>> m_history;   // per body, per vertex
   std::vector<std::vector<char>> m_has_history;
-  std::vector<std::vector<Tracked>> m_tracked;        // per body, per vertex (Track only)
+  std::vector<std::vector<Contact>> m_tracked;        // per body, per vertex (Track only): last depth contact
   std::vector<std::vector<std::int64_t>> m_applied;   // per vertex: last step a force was decided for it
   std::vector<Contact> m_completed;
 };

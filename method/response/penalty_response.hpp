@@ -19,6 +19,15 @@
 /// The reaction -(f_n + f_t) is spread over T's vertices by the same
 /// barycentric weights (which sum to 1): the total force is zero, so momentum
 /// is conserved. A contact without depth gets no force.
+///
+/// Two response modes (scene key collision.response):
+///   explicit  the force above is added to the bodies as an external force
+///             (symplectic in the contact spring; the clamps above apply);
+///   implicit  (default) the normal part becomes a ContactLink
+///             (sim/world/contact_link.hpp) that the integrator solves with
+///             the bodies: lambda = c_r (d - h v_n+) - c v_n+ at the end of
+///             the step, unclamped damping (the implicit solve needs no m/dt
+///             bound), unilateral. Friction stays explicit, as above.
 
 #include "method/handler/contact.hpp"
 #include "sim/world/world.hpp"
@@ -42,5 +51,20 @@ double contact_reduced_mass(const World& world, const Contact& contact);
 
 /// Adds force to the point and the barycentric reaction to the tet's vertices.
 void apply_contact_force(World& world, const Contact& contact, const Vec3& force_n);
+
+enum class ResponseMode { Implicit, Explicit };
+
+/// Implicit response for a force that is not computed from a depth (an
+/// extrapolated or held estimate): its normal part f.n > 0 becomes a link of
+/// the equivalent depth (f.n) / c_r, so the contact's spring and damper are
+/// integrated implicitly like any other; the rest of the force (and all of it
+/// when f.n <= 0 or c_r = 0) is added as a force.
+void add_force_link(World& world, const Contact& where, const Vec3& force_n, const ResponseParams& params);
+
+/// Implicit response: hands the world the contact's normal spring and damper
+/// as a link (with the contact's depth and direction as they stand) and adds
+/// its friction (the friction of penalty_force) as a force. Nothing for a
+/// contact without a positive depth.
+void add_contact_link(World& world, const Contact& contact, const ResponseParams& params, double dt_s);
 
 }  // namespace tcb

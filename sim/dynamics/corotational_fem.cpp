@@ -105,7 +105,8 @@ double CorotationalFem::elastic_energy_j(std::span<const Vec3> x) const {
   return energy;
 }
 
-void CorotationalFem::step(std::span<Vec3> x, std::span<Vec3> v, std::span<const Vec3> f_ext, double dt) {
+bool CorotationalFem::begin_linear_step(std::span<const Vec3> x, std::span<const Vec3> v,
+                                        std::span<const Vec3> f_ext, double dt) {
   const std::size_t n = x.size();
   const double stiffness_factor = dt * m_material.damping_stiffness_s + dt * dt;
   const double mass_factor = 1.0 + dt * m_material.damping_mass_per_s;
@@ -149,19 +150,31 @@ void CorotationalFem::step(std::span<Vec3> x, std::span<Vec3> v, std::span<const
     if (m > 0.0) m_rhs.segment<3>(3 * i) += m * v[i];
     m_velocity.segment<3>(3 * i) = m > 0.0 ? v[i] : Vec3::Zero();
   }
+  return true;
+}
 
+void CorotationalFem::multiply(const Eigen::VectorXd& v, Eigen::VectorXd& out) const { out.noalias() = m_system * v; }
+
+Eigen::VectorXd CorotationalFem::diagonal() const { return m_system.diagonal(); }
+
+void CorotationalFem::end_linear_step(std::span<Vec3> x, std::span<Vec3> v, const Eigen::VectorXd& v_new, double dt,
+                                      int iterations, bool converged) {
+  m_last_iterations = iterations;
+  m_last_converged = converged;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    v[i] = v_new.segment<3>(3 * i);
+    x[i] += dt * v[i];
+  }
+}
+
+void CorotationalFem::step(std::span<Vec3> x, std::span<Vec3> v, std::span<const Vec3> f_ext, double dt) {
+  begin_linear_step(x, v, f_ext, dt);
   Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper, Eigen::DiagonalPreconditioner<double>> cg;
   cg.setTolerance(m_material.cg_tolerance);
   cg.setMaxIterations(m_material.cg_max_iterations);
   cg.compute(m_system);
   m_velocity = cg.solveWithGuess(m_rhs, m_velocity);
-  m_last_iterations = static_cast<int>(cg.iterations());
-  m_last_converged = cg.info() == Eigen::Success;
-
-  for (std::size_t i = 0; i < n; ++i) {
-    v[i] = m_velocity.segment<3>(3 * i);
-    x[i] += dt * v[i];
-  }
+  end_linear_step(x, v, m_velocity, dt, static_cast<int>(cg.iterations()), cg.info() == Eigen::Success);
 }
 
 }  // namespace tcb

@@ -30,6 +30,25 @@ class ElasticModel {
   virtual int last_solver_iterations() const { return 0; }
   /// False when the last linear solve stopped at its iteration limit.
   virtual bool last_solve_converged() const { return true; }
+
+  // The step as a linear system in the new velocities, A v+ = b (3 entries
+  // per vertex), so that contact terms coupling bodies can join one solve
+  // (sim/world/coupled_solve.hpp). step() is begin + a solve of its own + end.
+  /// Assembles A and b for the step from x, v under f_ext; false when the
+  /// model's integrator has no such form (explicit velocity Verlet).
+  virtual bool begin_linear_step(std::span<const Vec3> x_m, std::span<const Vec3> v_m_per_s,
+                                 std::span<const Vec3> f_ext_n, double dt_s) = 0;
+  /// out = A v (after begin_linear_step).
+  virtual void multiply(const Eigen::VectorXd& v, Eigen::VectorXd& out) const = 0;
+  /// b, and the diagonal of A (for preconditioning).
+  virtual const Eigen::VectorXd& rhs() const = 0;
+  virtual Eigen::VectorXd diagonal() const = 0;
+  /// Solver tolerance (relative residual) and iteration limit of the model.
+  virtual double solver_tolerance() const = 0;
+  virtual int solver_max_iterations() const = 0;
+  /// Takes the solved velocities: v = v+, x += dt v+ (and the solver's record).
+  virtual void end_linear_step(std::span<Vec3> x_m, std::span<Vec3> v_m_per_s, const Eigen::VectorXd& v_new,
+                               double dt_s, int iterations, bool converged) = 0;
 };
 
 /// Lumped masses: each non-degenerate tet gives a quarter of density * volume

@@ -77,6 +77,8 @@ void MassSpring::accelerations(std::span<const Vec3> x, std::span<const Vec3> v,
 }
 
 void MassSpring::step(std::span<Vec3> x, std::span<Vec3> v, std::span<const Vec3> f_ext, double dt) {
+  m_last_iterations = 0;
+  m_last_converged = true;
   const std::size_t n = x.size();
   for (std::size_t i = 0; i < n; ++i)
     if (m_mass_kg[i] == 0.0) v[i] = Vec3::Zero();  // massless vertices never move
@@ -94,6 +96,38 @@ void MassSpring::step(std::span<Vec3> x, std::span<Vec3> v, std::span<const Vec3
       v[i] += dt * m_acceleration[i];
       x[i] += dt * v[i];
     }
+  }
+}
+
+bool MassSpring::begin_linear_step(std::span<const Vec3> x, std::span<const Vec3> v, std::span<const Vec3> f_ext,
+                                   double dt) {
+  if (m_material.integrator != Integrator::EulerCromer) return false;
+  const std::size_t n = x.size();
+  elastic_forces(x, m_force);
+  m_rhs.resize(3 * n);
+  m_diagonal.resize(3 * n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double m = m_mass_kg[i];
+    // A massless vertex is pinned: the row becomes v = 0.
+    const Vec3 b = m > 0.0 ? Vec3(m * v[i] + dt * (m_force[i] + f_ext[i] - m_material.damping_mass_per_s * m * v[i]))
+                           : Vec3(Vec3::Zero());
+    m_rhs.segment<3>(3 * i) = b;
+    m_diagonal.segment<3>(3 * i).setConstant(m > 0.0 ? m : 1.0);
+  }
+  return true;
+}
+
+void MassSpring::multiply(const Eigen::VectorXd& v, Eigen::VectorXd& out) const {
+  out = m_diagonal.cwiseProduct(v);
+}
+
+void MassSpring::end_linear_step(std::span<Vec3> x, std::span<Vec3> v, const Eigen::VectorXd& v_new, double dt,
+                                 int iterations, bool converged) {
+  m_last_iterations = iterations;
+  m_last_converged = converged;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    v[i] = v_new.segment<3>(3 * i);
+    x[i] += dt * v[i];
   }
 }
 

@@ -17,6 +17,10 @@
 ///   euler_cromer: v += dt a(x, v); x += dt v
 ///   verlet (velocity Verlet, f_ext held over the step):
 ///     v+ = v + dt/2 a(x, v); x += dt v+; v = v+ + dt/2 a(x', v+)
+/// As a linear step (implicit contact, elastic_model.hpp) euler_cromer is
+/// M v+ = M v + dt (f(x) + f_ext - alpha M v): the springs stay explicit, the
+/// contacts joined to this system are implicit. Velocity Verlet has no such
+/// form (begin_linear_step returns false); scenes are told so when loaded.
 
 #include "sim/dynamics/elastic_model.hpp"
 
@@ -30,6 +34,17 @@ class MassSpring final : public ElasticModel {
   double elastic_energy_j(std::span<const Vec3> x_m) const override;
   void elastic_forces(std::span<const Vec3> x_m, std::span<Vec3> f_n) const override;
   const std::vector<double>& vertex_masses_kg() const override { return m_mass_kg; }
+  bool begin_linear_step(std::span<const Vec3> x_m, std::span<const Vec3> v_m_per_s, std::span<const Vec3> f_ext_n,
+                         double dt_s) override;
+  void multiply(const Eigen::VectorXd& v, Eigen::VectorXd& out) const override;
+  const Eigen::VectorXd& rhs() const override { return m_rhs; }
+  Eigen::VectorXd diagonal() const override { return m_diagonal; }
+  double solver_tolerance() const override { return m_material.cg_tolerance; }
+  int solver_max_iterations() const override { return m_material.cg_max_iterations; }
+  void end_linear_step(std::span<Vec3> x_m, std::span<Vec3> v_m_per_s, const Eigen::VectorXd& v_new, double dt_s,
+                       int iterations, bool converged) override;
+  int last_solver_iterations() const override { return m_last_iterations; }
+  bool last_solve_converged() const override { return m_last_converged; }
 
  private:
   struct Spring {
@@ -49,6 +64,9 @@ class MassSpring final : public ElasticModel {
   std::vector<VolumeTerm> m_volumes;
   std::vector<double> m_mass_kg;
   std::vector<Vec3> m_force, m_acceleration, m_half_velocity;
+  Eigen::VectorXd m_rhs, m_diagonal;  // the linear step: A = diag(m_diagonal)
+  int m_last_iterations = 0;          // of a coupled contact solve; 0 after an explicit step
+  bool m_last_converged = true;
 };
 
 }  // namespace tcb

@@ -19,13 +19,22 @@ Vec3 centre_of_mass_m(const Body& b) {
 
 void World::step(double dt_s) {
   for (Body& body : bodies) {
+    body.applied_contact_force_n = body.contact_force_n;
     if (body.passive || !body.model) continue;
     body.external_force_n.resize(body.x_m.size());
     for (std::size_t i = 0; i < body.x_m.size(); ++i)
       body.external_force_n[i] = body.mass_kg[i] * gravity_m_per_s2 + body.contact_force_n[i];
-    body.model->step(body.x_m, body.v_m_per_s, body.external_force_n, dt_s);
+  }
+  std::vector<char> integrated(bodies.size(), 0);
+  last_contact_solve = contact_links.empty() ? ContactSolveStats{}
+                                             : step_linked_bodies(*this, contact_links, dt_s, integrated);
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    Body& body = bodies[b];
+    if (body.passive || !body.model) continue;
+    if (!integrated[b]) body.model->step(body.x_m, body.v_m_per_s, body.external_force_n, dt_s);
     if (ground) apply_ground(*ground, body.x_m, body.v_m_per_s);
   }
+  contact_links.clear();
   for (Body& body : bodies) std::fill(body.contact_force_n.begin(), body.contact_force_n.end(), Vec3::Zero());
   for (Body& body : bodies) {
     if (!body.trajectory) continue;
@@ -45,7 +54,7 @@ std::optional<Vec3> World::driven_contact_force_n() const {
   for (const Body& b : bodies) {
     if (!b.trajectory) continue;
     if (!sum) sum = Vec3::Zero();
-    for (const Vec3& f : b.contact_force_n) *sum += f;
+    for (const Vec3& f : b.applied_contact_force_n) *sum += f;
   }
   return sum;
 }

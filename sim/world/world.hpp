@@ -4,11 +4,16 @@
 /// add forces into Body::contact_force_n before World::step().
 ///
 /// One step: for each dynamic body, f_ext = m g + contact forces, the body's
-/// elastic model advances it, then the ground projects it. Passive bodies are
+/// elastic model advances it, then the ground projects it. Bodies with
+/// contact links (implicit penalty contact, contact_link.hpp) are advanced
+/// together with the bodies they touch (coupled_solve.hpp); a body without
+/// links takes its model's own step, exactly as without contacts. Passive bodies are
 /// never integrated (their positions stay as built) but still collide; a
 /// driven passive body moves to its trajectory's position at the new time,
 /// with the velocity of that motion.
-/// Contact forces are cleared at the end of every step. Units: SI.
+/// Contact forces and links are cleared at the end of every step; the force
+/// that contacts actually applied in it (explicit forces plus the links'
+/// solved forces) stays in Body::applied_contact_force_n. Units: SI.
 
 #include <cstdint>
 #include <memory>
@@ -17,6 +22,8 @@
 #include <vector>
 
 #include "sim/dynamics/elastic_model.hpp"
+#include "sim/world/contact_link.hpp"
+#include "sim/world/coupled_solve.hpp"
 #include "sim/world/ground.hpp"
 #include "sim/world/trajectory.hpp"
 
@@ -29,6 +36,8 @@ struct Body {
   std::vector<Vec3> x_m;                ///< current positions
   std::vector<Vec3> v_m_per_s;
   std::vector<Vec3> contact_force_n;    ///< accumulated by the handler, cleared each step
+  /// What contacts applied in the last step: contact_force_n plus the links' solved forces.
+  std::vector<Vec3> applied_contact_force_n;
   std::vector<double> mass_kg;          ///< lumped
   Material material;
   bool passive = false;
@@ -50,6 +59,10 @@ class World {
   std::optional<GroundPlane> ground;
   double time_s = 0.0;
   std::int64_t step_index = 0;
+  /// Implicit penalty contacts for the next step, added by the handler.
+  std::vector<ContactLink> contact_links;
+  /// What the implicit contact solves of the last step did.
+  ContactSolveStats last_contact_solve;
 
   void step(double dt_s);
 
@@ -59,8 +72,8 @@ class World {
   /// Largest vertex speed of the dynamic bodies; NaN if any state is not finite.
   double max_speed_m_per_s() const;
   std::size_t vertex_count() const;
-  /// Sum of the contact forces on the driven bodies (what a haptic device
-  /// would render), read before step() clears them; nullopt without any.
+  /// Sum of the contact forces the last step applied to the driven bodies
+  /// (what a haptic device would render); nullopt without driven bodies.
   std::optional<Vec3> driven_contact_force_n() const;
 };
 

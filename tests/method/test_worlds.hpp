@@ -28,6 +28,9 @@ inline TestScene scene_of(const std::vector<Placed>& objects, const std::string&
   TestScene scene;
   scene.world.dt_s = 1e-3;
   scene.world.gravity_m_per_s2 = Vec3(0, -9.81, 0);
+  // The forces these tests check are the explicit ones; implicit response (links)
+  // is tested where it is named.
+  scene.collision.response_mode = ResponseMode::Explicit;
   // Stable for the lightest vertices of these small meshes (explicit penalty).
   scene.collision.response_stiffness_n_per_m = 100.0;
   for (const Placed& p : objects) {

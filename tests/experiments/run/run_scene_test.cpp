@@ -178,6 +178,27 @@ TEST_CASE("runs are deterministic apart from timings", "[run]") {
   fs::remove_all(b);
 }
 
+TEST_CASE("without contacts between bodies implicit and explicit response are the same run", "[run]") {
+  // cube_drop: one body on the ground plane, no pair that could collide, so no links.
+  std::vector<std::vector<std::string>> lines;
+  for (const char* mode : {"implicit", "explicit"}) {
+    const fs::path dir = fresh_dir(std::string("mode_") + mode);
+    RunOptions options;
+    options.steps = 200;
+    options.out_dir = dir;
+    CHECK(run_scene(load_scene_file(resolve_scene("cube_drop", default_scene_dirs()),
+                                    {std::string("collision.response=") + mode}),
+                    options)
+              .status == "ok");
+    lines.push_back(lines_of(dir / "steps.csv"));
+    fs::remove_all(dir);
+  }
+  REQUIRE(lines[0].size() == 201);
+  REQUIRE(lines[0].size() == lines[1].size());
+  for (std::size_t i = 1; i < lines[0].size(); ++i)
+    REQUIRE(without_timing(lines[0][0], lines[0][i]) == without_timing(lines[1][0], lines[1][i]));
+}
+
 TEST_CASE("under a work budget two runs are identical apart from timings", "[run]") {
   const fs::path a = fresh_dir("work_a"), b = fresh_dir("work_b");
   const SceneDesc scene = load_scene_file(resolve_scene("plates20", default_scene_dirs()));

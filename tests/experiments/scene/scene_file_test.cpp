@@ -157,6 +157,24 @@ TEST_CASE("scene file: a method's settings in [method.NAME], typed by the method
   for (const BadCase& c : cases) check_rejected(c, "m.toml");
 }
 
+TEST_CASE("scene file: collision.response, and implicit response refuses an integrator without a linear step",
+          "[scene]") {
+  const std::string obj = "[[object]]\nmesh = \"box:size=1x1x1\"\n";
+  CHECK(parse_scene(obj, "r.toml").collision.response_mode == ResponseMode::Implicit);  // the default
+  CHECK(parse_scene(obj + "[collision]\nresponse = \"explicit\"\n", "r.toml").collision.response_mode ==
+        ResponseMode::Explicit);
+  check_rejected({"bad mode", obj + "[collision]\nresponse = \"soft\"\n", {}, "r.toml", 4,
+                  "collision.response: must be \"implicit\" or \"explicit\""},
+                 "r.toml");
+  const std::string verlet = obj + "material = { model = \"mass_spring\", integrator = \"verlet\" }\n";
+  const SceneDesc s = parse_scene(verlet, "v.toml");
+  const World world = build_world(s.world);
+  CHECK_THROWS_WITH(resolve_collision_settings(world, s.collision, s.world.dt_s, "v.toml"),
+                    Contains("use integrator = \"euler_cromer\" or collision.response = \"explicit\""));
+  const SceneDesc explicit_verlet = parse_scene(verlet, "v.toml", {"collision.response=explicit"});
+  CHECK_NOTHROW(resolve_collision_settings(world, explicit_verlet.collision, s.world.dt_s, "v.toml"));
+}
+
 TEST_CASE("the committed scenes load and build", "[scene]") {
   for (const char* name : {"plates20", "cube_drop"}) {
     INFO(name);

@@ -99,10 +99,25 @@ TEST_CASE("interruptible: a budget far larger than needed behaves like full", "[
   CHECK(r.exact_forces > 0);
 }
 
-TEST_CASE("interruptible with no budget gives full's forces bit for bit", "[interruptible]") {
+TEST_CASE("interruptible with no budget gives full's forces bit for bit, in both response modes", "[interruptible]") {
+  const auto same_links = [](const World& a, const World& b) {
+    if (a.contact_links.size() != b.contact_links.size()) return false;
+    for (std::size_t i = 0; i < a.contact_links.size(); ++i) {
+      const ContactLink &x = a.contact_links[i], &y = b.contact_links[i];
+      if (x.point_body != y.point_body || x.vertex != y.vertex || x.tet_body != y.tet_body ||
+          x.tet_vertices != y.tet_vertices || x.weights != y.weights || x.normal != y.normal || x.depth_m != y.depth_m ||
+          x.stiffness_n_per_m != y.stiffness_n_per_m || x.damping_n_s_per_m != y.damping_n_s_per_m)
+        return false;
+    }
+    return true;
+  };
+  for (const ResponseMode mode : {ResponseMode::Explicit, ResponseMode::Implicit})
   for (const char* name : {"interruptible", "interruptible_no_extrapolation", "interruptible_tracked"}) {
-    const test::TestScene scene = pressed_blocks();
+    INFO(name << (mode == ResponseMode::Implicit ? " implicit" : " explicit"));
+    test::TestScene scene = pressed_blocks();
+    scene.collision.response_mode = mode;
     World a = build_world(scene.world), b = build_world(scene.world);
+    std::size_t links_seen = 0;
     auto full = make_handler("full");
     auto interruptible = make_handler(name);
     full->init(a, test::settings_of(a, scene));
@@ -112,9 +127,13 @@ TEST_CASE("interruptible with no budget gives full's forces bit for bit", "[inte
       full->step(a, ua);
       interruptible->step(b, ub);
       for (std::size_t i = 0; i < a.bodies.size(); ++i) REQUIRE(a.bodies[i].contact_force_n == b.bodies[i].contact_force_n);
+      REQUIRE(same_links(a, b));
+      links_seen += a.contact_links.size();
       a.step(scene.world.dt_s);
       b.step(scene.world.dt_s);
     }
+    for (std::size_t i = 0; i < a.bodies.size(); ++i) CHECK(a.bodies[i].x_m == b.bodies[i].x_m);
+    CHECK((links_seen > 0) == (mode == ResponseMode::Implicit));  // the implicit runs really used links
   }
 }
 
