@@ -5,11 +5,15 @@ runs of the sweeps declaring it otherwise), narrowed to a method, its settings
 and budget kinds. Every number a rule uses is a run.json summary value (or the
 run's status), never recomputed from steps.csv, so `tcbench check` can gate
 the same numbers. Where the paper is qualitative, a rule uses a threshold of
-ours; the record names it in `ours` and the report flags it.
+ours; the record names it in `ours` and the report flags it. A record's `per`
+judges its runs in parts, one table row each: per contact response (implicit or
+explicit penalty contact), so the reader sees which verdicts are the
+integrator's, and per method variant.
 """
 from dataclasses import dataclass, field
 
 from . import figures, pairing
+from .loader import response_order
 from .paper import (EVERY_NTH_N, JITTER_FACTOR, LATENCY_STEPS, OVERSHOOT_PCT, SPEEDUP, SPEEDUP_MIN,
                     STANDING_FRACTION)
 
@@ -42,6 +46,9 @@ class Claim:
     metrics: tuple   # the summary keys its rule reads
     rule: object     # rule(runs, ctx) -> (what we measured, verdict)
     ours: tuple = ()  # thresholds of ours (not the paper's) the rule applies
+    # Judged separately for each value of these: "response" (implicit or explicit penalty
+    # contact: which verdicts are the integrator's), "method" (each method variant selected).
+    per: tuple = ()
 
 
 @dataclass
@@ -50,6 +57,11 @@ class Outcome:
     measured: str
     verdict: str
     runs: list
+    part: str = ""  # which part of the runs this row judges ("interruptible, implicit response"); "" for all
+
+    @property
+    def text(self):
+        return f"{self.claim.text} — {self.part}" if self.part else self.claim.text
 
 
 # ---------------------------------------------------------------- rules
@@ -61,6 +73,46 @@ def plural(count, noun):
 def share(good, total):
     """The verdict of a claim judged run by run."""
     return HOLDS if good == total else FAILS if good == 0 else f"partly: {good} of {plural(total, 'run')}"
+
+
+def by_budget(runs):
+    """[(budget label, [runs])] from the largest budget to the smallest (full-work/2 before full-work/10)."""
+    groups = {}
+    for r in sorted(runs, key=lambda r: (r.budget_order(), r.seed if r.seed is not None else -1, r.name)):
+        groups.setdefault(r.budget_label, []).append(r)
+    return list(groups.items())
+
+
+def where(run, group):
+    """How the evidence names a run within its budget's group: the budget, and the seed when it repeats."""
+    return run.budget_label + (f" (seed {run.seed})" if len(group) > 1 else "")
+
+
+def per_budget_verdict(results):
+    """results: [(budget label, good, total)] -> one verdict naming the budgets it holds at."""
+    if not results:
+        return UNMEASURED
+    held = [label for label, good, total in results if good == total]
+    failed = [label for label, good, total in results if not good]
+    partial = [f"{label} in {good} of {total} runs" for label, good, total in results if 0 < good < total]
+    if len(held) == len(results):
+        return f"{HOLDS} at {'every budget' if len(results) > 1 else 'its budget'} ({', '.join(held)})"
+    if len(failed) == len(results):
+        return f"{FAILS} at {'any budget' if len(results) > 1 else 'its budget'} ({', '.join(failed)})"
+    return "partly: " + "; ".join(part for part in (
+        f"holds at {', '.join(held)}" if held else "",
+        f"not at {', '.join(failed)}" if failed else "",
+        f"holds at {', '.join(partial)}" if partial and not held else ", ".join(partial)) if part)
+
+
+def num(value, unit="", digits=3):
+    return "n/a" if value is None else f"{value:.{digits}g}{' ' + unit if unit else ''}"
+
+
+def vs_reference(run, ref, key, unit):
+    """"0.196 J (full 0.150 J)": a summary value beside its reference's."""
+    mine = num(run.metric(key), unit)
+    return mine if ref is None or ref.metric(key) is None else f"{mine} (full {num(ref.metric(key), unit)})"
 
 
 def worst_overshoot(runs, ctx):
@@ -92,22 +144,38 @@ def jitter_ratio(run, ctx):
     return mine / theirs if mine is not None and theirs else None
 
 
+SETTLED = (("kinetic energy mean", "settled_kinetic_energy.mean", "J"),
+           ("max speed median", "settled_max_speed_median", "m/s"))  # over the run's second half
+
+
 def rests_plausibly(runs, ctx):
-    """Stable, still standing, nothing passed through, jitter within JITTER_FACTOR of the reference's."""
+    """Per budget: stable, still standing, nothing passed through, jitter within JITTER_FACTOR of the
+    reference's. The evidence adds how settled the stack is (kinetic energy and fastest vertex over the
+    second half), beside the reference's."""
     if not runs:
         return UNMEASURED, UNMEASURED
-    notes, good = [], 0
-    for r in runs:
-        h0, h1 = r.metric("top_centre_height_m.initial"), r.metric("top_centre_height_m.final")
-        standing = h0 is not None and h1 is not None and h1 >= STANDING_FRACTION * h0
-        tunnelling, jitter, ratio = r.metric("tunneling"), r.metric("jitter"), jitter_ratio(r, ctx)
-        ok = r.status == "ok" and tunnelling == 0 and standing and ratio is not None and ratio <= JITTER_FACTOR
-        good += ok
-        height = f"top centre {h0:.3f} -> {h1:.3f} m" if h0 is not None and h1 is not None else "height not measured"
-        jit = "jitter not measured" if jitter is None else f"jitter {jitter:.3g} m/s" + (
-            f" = {ratio:.1f}x the reference's" if ratio is not None else " (no reference to compare)")
-        notes.append(f"{r.name}: status {r.status}, {height}, tunnelling {tunnelling}, {jit}")
-    return "; ".join(notes), share(good, len(runs))
+    notes, results = [], []
+    for label, group in by_budget(runs):
+        good = 0
+        for r in group:
+            ref = ctx.reference(r)
+            h0, h1 = r.metric("top_centre_height_m.initial"), r.metric("top_centre_height_m.final")
+            standing = h0 is not None and h1 is not None and h1 >= STANDING_FRACTION * h0
+            tunnelling, jitter, ratio = r.metric("tunneling"), r.metric("jitter"), jitter_ratio(r, ctx)
+            plausible = ratio is not None and ratio <= JITTER_FACTOR
+            ok = r.status == "ok" and tunnelling == 0 and standing and plausible
+            good += ok
+            height = (f"top centre {h0:.3f} -> {h1:.3f} m: {'standing' if standing else 'fallen'} (ours)"
+                      if h0 is not None and h1 is not None else "height not measured")
+            jit = "jitter not measured" if jitter is None else f"jitter {jitter:.3g} m/s" + (
+                f" = {ratio:.3g}x full's: {'plausible' if plausible else 'implausible'} (ours)"
+                if ratio is not None else " (no reference to compare)")
+            settled = [f"{name} {vs_reference(r, ref, key, unit)}" for name, key, unit in SETTLED
+                       if r.metric(key) is not None]
+            notes.append(f"{where(r, group)}: {'ok' if r.status == 'ok' else 'status ' + r.status}, {height}, "
+                         f"tunnelling {tunnelling}, {jit}" + (", settled: " + ", ".join(settled) if settled else ""))
+        results.append((label, good, len(group)))
+    return "; ".join(notes), per_budget_verdict(results)
 
 
 def jitters(runs, ctx):
@@ -117,8 +185,35 @@ def jitters(runs, ctx):
     if not rows:
         return UNMEASURED, UNMEASURED
     loud = [r for r, x in rows if x > JITTER_FACTOR]
-    measured = "; ".join(f"{r.name}: jitter {x:.1f}x the reference's" for r, x in rows)
+    measured = "; ".join(f"{r.name}: jitter {r.metric('jitter'):.3g} m/s = {x:.3g}x full's" for r, x in rows)
     return measured, share(len(loud), len(rows))
+
+
+ABLATION = "interruptible_no_extrapolation"  # the paper's method without force extrapolation
+
+
+def extrapolation_steadies(runs, ctx):
+    """Per budget: the run with extrapolation jitters less than the ablation without it (same experiment,
+    same budget)."""
+    notes, results = [], []
+    for label, group in by_budget(runs):
+        good = compared = 0
+        for r in group:
+            other = pairing.counterpart(r, ctx.runs, ABLATION)
+            mine, theirs = r.metric("jitter"), other.metric("jitter") if other else None
+            if mine is None or theirs is None:
+                continue
+            compared += 1
+            good += mine < theirs
+            ratio = f" ({mine / theirs:.2f}x)" if theirs else ""
+            notes.append(f"{where(r, group)}: jitter {mine:.3g} m/s with extrapolation, {theirs:.3g} m/s without"
+                         + ratio)
+        if compared:
+            results.append((label, good, compared))
+    if not results:
+        return (f"no {ABLATION} run with jitter in the same setup at the same budget" if runs else UNMEASURED,
+                UNMEASURED)
+    return "; ".join(notes), per_budget_verdict(results)
 
 
 def latency_bound(runs, ctx):
@@ -163,21 +258,33 @@ CLAIMS = [
           metrics=("handling_ms.p50",), rule=best_speedup,
           ours=(f"SPEEDUP_MIN = {SPEEDUP_MIN:g}: counts as reproduced from {SPEEDUP_MIN:g}x",)),
     Claim(id="stack_rests",
-          text="A stack rests plausibly under the budget (stable, still standing, no pass-through, "
-               f"jitter within {JITTER_FACTOR:g}x of the reference's)",
+          text="A stack rests plausibly under the budget: stable, standing, no pass-through, plausible jitter",
           paper="plausible resting contact",
-          figure="jitter", select=Select(methods=("interruptible",), budget_kinds=("wall_ms", "work"),
-                                       measured=("jitter",)),
-          metrics=("top_centre_height_m.initial", "top_centre_height_m.final", "tunneling", "jitter"),
-          rule=rests_plausibly,
-          ours=(f"JITTER_FACTOR = {JITTER_FACTOR:g}: plausible jitter is at most that times the reference's",
-                f"STANDING_FRACTION = {STANDING_FRACTION:g}: standing while the top keeps that share of its height")),
+          figure="jitter",
+          select=Select(methods=("interruptible", "interruptible_no_extrapolation", "interruptible_tracked"),
+                        budget_kinds=("wall_ms", "work"), measured=("jitter",)),
+          metrics=("top_centre_height_m.initial", "top_centre_height_m.final", "tunneling", "jitter",
+                   "settled_kinetic_energy.mean", "settled_max_speed_median"),
+          rule=rests_plausibly, per=("method", "response"),
+          ours=(f"STANDING_FRACTION = {STANDING_FRACTION:g}: standing while the top centre keeps that share of "
+                "its height",
+                f"JITTER_FACTOR = {JITTER_FACTOR:g}: plausible jitter is at most that times full's (same setup)",
+                "interruptible_no_extrapolation and interruptible_tracked are our variants, judged alike")),
     Claim(id="every_2nd_jitters",
           text=f"Handling collisions only every n-th step (n = {EVERY_NTH_N}) makes resting contact jitter",
           paper="resting contact jitters",
           figure="jitter", select=Select(methods=("every_nth",), settings={"n": EVERY_NTH_N}, measured=("jitter",)),
-          metrics=("jitter",), rule=jitters,
-          ours=(f"JITTER_FACTOR = {JITTER_FACTOR:g}: jitter is more than that times the reference's",)),
+          metrics=("jitter",), rule=jitters, per=("response",),
+          ours=(f"JITTER_FACTOR = {JITTER_FACTOR:g}: jitter is more than that times full's (same setup)",)),
+    Claim(id="extrapolation_steadies",
+          text="Force extrapolation avoids jitter: interruptible jitters less than interruptible_no_extrapolation "
+               "at the same budget",
+          paper="extrapolated forces while a cycle is incomplete (no number)",
+          figure="jitter", select=Select(methods=("interruptible",), budget_kinds=("wall_ms", "work"),
+                                       measured=("jitter",)),
+          metrics=("jitter",), rule=extrapolation_steadies, per=("response",),
+          ours=("the comparison: the paper gives no ablation; lower jitter than the same run without "
+                "extrapolation counts",)),
     Claim(id="latency",
           text=f"A fast heavy object: latency up to {LATENCY_STEPS} steps keeps it from passing through; "
                "more lets it pass",
@@ -187,14 +294,33 @@ CLAIMS = [
 ]
 
 
+PARTS = {  # claim.per name -> (the run's value, its sort key, how a row names it)
+    "method": (lambda r: r.method_label, lambda v: (v != "interruptible", v), lambda v: v),
+    "response": (lambda r: r.response, response_order, lambda v: f"{v} response"),
+}
+
+
+def parts(claim, runs):
+    """[(part text, runs)]: runs split by the claim's `per` keys; one part of all runs when it has none
+    (or no runs)."""
+    if not claim.per or not runs:
+        return [("", runs)]
+    groups = {}
+    for r in runs:
+        groups.setdefault(tuple(PARTS[p][0](r) for p in claim.per), []).append(r)
+    order = sorted(groups, key=lambda key: tuple(PARTS[p][1](v) for p, v in zip(claim.per, key)))
+    return [(", ".join(PARTS[p][2](v) for p, v in zip(claim.per, key)), groups[key]) for key in order]
+
+
 def judge(ctx):
-    """[Outcome] for every claim, judged on the runs its figure draws."""
+    """[Outcome] for every claim, judged on the runs its figure draws: one per part of them (response
+    mode, method variant) where the claim says so."""
     modules = dict(figures.discover())
     outcomes = []
     for claim in CLAIMS:
         module = modules.get(claim.figure)
         scope = figures.runs_in_scope(claim.figure, module, ctx.runs) if module else []
-        runs = claim.select(scope)
-        measured, verdict = claim.rule(runs, ctx)
-        outcomes.append(Outcome(claim, measured, verdict, runs))
+        for part, runs in parts(claim, claim.select(scope)):
+            measured, verdict = claim.rule(runs, ctx)
+            outcomes.append(Outcome(claim, measured, verdict, runs, part))
     return outcomes

@@ -8,9 +8,34 @@ figures and claims select runs by what the run summaries contain.
 import csv
 import json
 import os
+import re
 from dataclasses import dataclass, field
 
 SKIP_DIRS = ("report", "frames")  # our own output and ParaView frames: never results
+
+RESPONSE_KEY = "collision.response"  # the scene key choosing implicit or explicit penalty contact
+RESPONSE_BEFORE_FIELD = "explicit"   # runs recorded before run.json had "response" integrated explicitly
+RESPONSE_ORDER = ("implicit", "explicit")  # the default first, wherever modes are listed
+BUDGET_KIND_ORDER = {"none": 0, "wall_ms": 1, "work": 2}
+
+
+def response_override(override):
+    """The mode a `collision.response=...` override sets, or None for any other override."""
+    key, _, value = override.partition("=")
+    return value.strip().strip("'\"") if key.strip() == RESPONSE_KEY else None
+
+
+def response_order(mode):
+    return (RESPONSE_ORDER.index(mode) if mode in RESPONSE_ORDER else len(RESPONSE_ORDER), mode)
+
+
+def relative_divisor(label):
+    """K of a relative budget label "full/K" or "full-work/K", else None."""
+    match = re.fullmatch(r"full(?:-work)?/([0-9.]+)", label or "")
+    try:
+        return float(match.group(1)) if match else None
+    except ValueError:
+        return None
 
 
 class Run:
@@ -37,6 +62,30 @@ class Run:
     budget_kind = property(lambda self: self.budget.get("kind") or "none")
     budget_value = property(lambda self: self.budget.get("value"))
     budget_label = property(lambda self: self.budget.get("label") or "none")
+
+    @property
+    def response(self):
+        """"implicit" or "explicit": how the run integrated penalty contact. run.json records it since
+        the option exists; an older run has no field and was explicit."""
+        mode = self.record.get("response")
+        if isinstance(mode, str) and mode:
+            return mode
+        for o in self.overrides:
+            if response_override(o):
+                return response_override(o)
+        return RESPONSE_BEFORE_FIELD
+
+    @property
+    def response_recorded(self):
+        return isinstance(self.record.get("response"), str)
+
+    def budget_order(self):
+        """Sort key: no budget, then wall, then work; relative budgets from the largest (full/2 before
+        full/10), then absolute ones from the largest."""
+        k = relative_divisor(self.budget_label)
+        value = self.budget_value if isinstance(self.budget_value, (int, float)) else 0
+        return (BUDGET_KIND_ORDER.get(self.budget_kind, 3), k is None, k if k is not None else -value,
+                self.budget_label)
 
     def label(self):
         """Legend text: the method with its non-default settings, and the budget."""

@@ -10,6 +10,7 @@ import tempfile
 from dataclasses import dataclass
 
 from .context import provenance
+from .loader import response_order
 from .claims import UNMEASURED as NOT_MEASURED
 from .paper import PAPER_CITATION
 
@@ -47,6 +48,8 @@ def fmt(value):
 
 RUN_COLUMNS = (("handling p50 (ms)", "handling_ms.p50"), ("recall min", "recall_min"),
                ("max depth (m)", "max_depth"), ("jitter (m/s)", "jitter"),
+               ("settled max speed p50 (m/s)", "settled_max_speed_median"),
+               ("settled kinetic energy mean (J)", "settled_kinetic_energy.mean"),
                ("probe force change (N/step)", "probe_force_change_rms"), ("tunnelling", "tunneling"))
 
 
@@ -59,18 +62,23 @@ def document(results, sections, outcomes, notes):
     if results.skipped:
         blocks.append(Para("Skipped (incomplete or unreadable): "
                            + "; ".join(f"{path}: {why}" for path, why in results.skipped) + "."))
-    blocks += [Heading(2, "Claims of the paper"), Para(f"[1] {PAPER_CITATION}."),
+    blocks += [Heading(2, "Claims of the paper"), Para(f"[1] {PAPER_CITATION.rstrip('.')}."),
+               Para("Claims about resting contact are judged once per contact response (implicit or explicit "
+                    "penalty contact, the scene's collision.response; runs recorded before the option count as "
+                    "explicit), so a verdict that differs between the two rows is the integrator's, not the "
+                    "collision handling's. \"ours\" in a row marks a threshold of ours, listed in the last column."),
                Table(["claim", "the paper [1]", "here", "verdict", "thresholds of ours (not the paper's)"],
-                     [[o.claim.text, o.claim.paper, o.measured, o.verdict, "; ".join(o.claim.ours)]
+                     [[o.text, o.claim.paper, o.measured, o.verdict, "; ".join(o.claim.ours)]
                       for o in outcomes], verdict_column=3),
                Heading(2, "Figures")]
     blocks += [Figure(s) for s in sections]
     blocks += [Para(n) for n in notes]
     blocks += [Heading(2, "Runs"),
-               Table(["run", "scene", "method", "budget", "status"] + [name for name, _ in RUN_COLUMNS],
-                     [[r.name, r.scene, r.method_label, r.budget_label, r.status]
+               Table(["run", "scene", "method", "budget", "response", "status"] + [name for name, _ in RUN_COLUMNS],
+                     [[r.name, r.scene, r.method_label, r.budget_label, r.response, r.status]
                       + [fmt(r.metric(key)) for _, key in RUN_COLUMNS]
-                      for r in sorted(runs, key=lambda r: (r.scene, r.method_label, r.name))])]
+                      for r in sorted(runs, key=lambda r: (r.scene, r.method_label, r.budget_order(),
+                                                           response_order(r.response), r.name))])]
     return blocks
 
 
@@ -111,7 +119,7 @@ def markdown(blocks):
 
 STYLE = ("body{font-family:sans-serif;max-width:1100px;margin:auto}img{max-width:100%}"
          "table{border-collapse:collapse;font-size:13px}td,th{border:1px solid #ccc;padding:3px 6px}"
-         ".no{color:#b00}.yes{color:#080}.src{color:#666;font-size:12px}")
+         ".no{color:#b00}.yes{color:#080}.part{color:#a60}.src{color:#666;font-size:12px}")
 
 
 def page(blocks):
@@ -132,7 +140,8 @@ def page(blocks):
                 for k, c in enumerate(row):
                     cls = ""
                     if k == b.verdict_column and c != NOT_MEASURED:
-                        cls = " class='yes'" if str(c).startswith("holds") else " class='no'"
+                        cls = (" class='yes'" if str(c).startswith("holds") else
+                               " class='part'" if str(c).startswith("partly") else " class='no'")
                     cells.append(f"<td{cls}>{e(str(c))}</td>")
                 out.append("<tr>" + "".join(cells) + "</tr>")
             out.append("</table>")

@@ -1,7 +1,7 @@
 """Budget granularity: how far handling time overshoots a wall-clock budget."""
 from ..context import plt
 from ..paper import OVERSHOOT_PCT, PAPER
-from ._common import tick_label, width_for
+from ._common import mixed_responses, tick_label, width_for
 
 TITLE = "Budget granularity"
 ORDER = 2
@@ -23,7 +23,7 @@ def draw(ctx, runs):
     for key, marker in (("p50", "o"), ("p99", "s"), ("max", "^")):
         ax.scatter(x, [r.metric(f"overshoot_pct.{key}") for r in runs], marker=marker, label=key)
     ax.axhline(OVERSHOOT_PCT, color="k", ls="--", lw=0.8, label=f"{PAPER}: < {OVERSHOOT_PCT:g} %")
-    ax.set_xticks(list(x), [tick_label(r) for r in runs], fontsize=6)
+    ax.set_xticks(list(x), [tick_label(r, with_response=mixed_responses(runs)) for r in runs], fontsize=6)
     ax.set(ylabel="handling time over budget (%)")
     ax.legend(fontsize=7)
     return ctx.save(fig, FILE, TITLE,

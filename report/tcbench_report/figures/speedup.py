@@ -2,7 +2,8 @@
 from ..context import plt
 from ..paper import PAPER, SPEEDUP
 from .. import pairing
-from ._common import tick_label, width_for
+from ..loader import response_order
+from ._common import method_order, mixed_responses, tick_label, width_for
 
 TITLE = "Speed-up over the full method, with the accuracy it cost"
 ORDER = 3
@@ -12,11 +13,13 @@ FILE = "fig3_speedup"
 
 def draw(ctx, runs):
     rows = pairing.budgeted_with_reference(runs, ctx.runs)
-    rows.sort(key=lambda row: (row[0].scene, row[0].method_label, row[0].budget_value or 0, row[0].name))
+    rows.sort(key=lambda row: (row[0].scene, method_order(row[0]), row[0].budget_order(),
+                               response_order(row[0].response), row[0].name))
     if not rows:
         return ctx.missing(TITLE, "no budgeted run with a reference (method full, no budget, same scene, "
                                   "scene overrides and random-number setting) and handling_ms.p50 in both summaries")
-    fig, ax = plt.subplots(figsize=(width_for(len(rows)), 3.8))
+    mixed = mixed_responses([run for run, _, _ in rows])
+    fig, ax = plt.subplots(figsize=(width_for(len(rows), 1.05), 3.8))  # room for interruptible_no_extrapolation
     ratios = [ratio for _, _, ratio in rows]
     ax.bar(range(len(rows)), ratios, color="tab:blue")
     for k, (run, _, ratio) in enumerate(rows):
@@ -29,7 +32,7 @@ def draw(ctx, runs):
         ax.text(k, ratio, note, ha="center", va="bottom", fontsize=6)
     ax.margins(y=0.2)  # room for the labels above the bars
     ax.axhline(SPEEDUP, color="k", ls="--", lw=0.8, label=f"{PAPER}: up to {SPEEDUP:g}x")
-    ax.set_xticks(range(len(rows)), [tick_label(run) for run, _, _ in rows], fontsize=6)
+    ax.set_xticks(range(len(rows)), [tick_label(run, with_response=mixed) for run, _, _ in rows], fontsize=6)
     ax.set(ylabel="median handling time: reference / run")
     ax.legend(fontsize=7)
     return ctx.save(fig, FILE, TITLE,

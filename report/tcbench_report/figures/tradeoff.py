@@ -13,14 +13,15 @@ METRICS = (("depth_err.mean", "mean depth error (m)"), ("recall_min", "minimum r
 
 def curves(runs):
     """{legend: [runs]}: one curve per method label; per setup too when a scene has several
-    (scene overrides, RNG seeds), so different experiments are never joined by a line."""
-    setups = sorted({pairing.setup(r) for r in runs}, key=repr)
+    (contact response, scene overrides, RNG seeds), so different experiments are never joined by a line.
+    The legend names only what differs between the setups."""
+    setups = [pairing.setup(r) for r in runs]
+    varies = [len({s[k] for s in setups}) > 1 for k in range(4)]  # scene, seed, response, overrides
     out = {}
-    for r in runs:
-        key = r.method_label
-        if len(setups) > 1:
-            _, seed, overrides = pairing.setup(r)
-            key += " [" + " ".join(list(overrides) + [f"rng={seed}"]) + "]"
+    for r, (_, seed, response, overrides) in zip(runs, setups):
+        parts = ([f"{response} response"] if varies[2] else []) + (list(overrides) if varies[3] else []) \
+            + ([f"rng={seed}"] if varies[1] else [])
+        key = r.method_label + (" [" + " ".join(parts) + "]" if parts else "")
         out.setdefault(key, []).append(r)
     return dict(sorted(out.items()))
 
@@ -32,7 +33,7 @@ def draw(ctx, runs):
     scenes = {s: rs for s, rs in scenes.items() if rs}
     if not scenes:
         return ctx.missing(TITLE, "no run with the oracle (recall_min in its summary)")
-    fig, axes = plt.subplots(len(scenes), len(METRICS), figsize=(12, 3.2 * len(scenes)), squeeze=False)
+    fig, axes = plt.subplots(len(scenes), len(METRICS), figsize=(14, 3.4 * len(scenes)), squeeze=False)
     sources = []
     for row, (scene, rs) in zip(axes, scenes.items()):
         lines = curves(rs)
@@ -43,7 +44,7 @@ def draw(ctx, runs):
                 if pts:
                     ax.plot([p[0] for p in pts], [p[1] for p in pts], "o-", ms=3, label=legend)
             ax.set(xlabel="median handling (ms)", ylabel=name, title=scene)
-            if ax.get_legend_handles_labels()[0]:
-                ax.legend(fontsize=6)
+        if row[-1].get_legend_handles_labels()[0]:  # one legend a scene, beside its last panel
+            row[-1].legend(fontsize=6, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0)
         sources += rs
     return ctx.save(fig, FILE, TITLE, "Each point is one run; one curve per method across its budgets.", sources)
