@@ -161,10 +161,7 @@ void CorotationalFem::end_linear_step(std::span<Vec3> x, std::span<Vec3> v, cons
                                       int iterations, bool converged) {
   m_last_iterations = iterations;
   m_last_converged = converged;
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    v[i] = v_new.segment<3>(3 * i);
-    x[i] += dt * v[i];
-  }
+  take_velocities(x, v, v_new, dt);
 }
 
 void CorotationalFem::step(std::span<Vec3> x, std::span<Vec3> v, std::span<const Vec3> f_ext, double dt) {

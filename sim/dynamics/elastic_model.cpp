@@ -25,4 +25,11 @@ std::unique_ptr<ElasticModel> make_elastic_model(const TetMesh& mesh, const std:
   return std::make_unique<CorotationalFem>(mesh, rest_m, material);
 }
 
+void take_velocities(std::span<Vec3> x, std::span<Vec3> v, const Eigen::VectorXd& v_new, double dt) {
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    v[i] = v_new.segment<3>(3 * static_cast<Eigen::Index>(i));
+    x[i] += dt * v[i];
+  }
+}
+
 }  // namespace tcb

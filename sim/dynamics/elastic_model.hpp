@@ -51,6 +51,9 @@ class ElasticModel {
                                double dt_s, int iterations, bool converged) = 0;
 };
 
+/// The end of a linear step: v = v_new (3 entries per vertex), x += dt v.
+void take_velocities(std::span<Vec3> x_m, std::span<Vec3> v_m_per_s, const Eigen::VectorXd& v_new, double dt_s);
+
 /// Lumped masses: each non-degenerate tet gives a quarter of density * volume
 /// to each of its vertices (rest_m are the rest positions, metres).
 std::vector<double> lumped_masses_kg(const TetMesh& mesh, const std::vector<Vec3>& rest_m, double density_kg_per_m3);

@@ -125,10 +125,7 @@ void MassSpring::end_linear_step(std::span<Vec3> x, std::span<Vec3> v, const Eig
                                  int iterations, bool converged) {
   m_last_iterations = iterations;
   m_last_converged = converged;
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    v[i] = v_new.segment<3>(3 * i);
-    x[i] += dt * v[i];
-  }
+  take_velocities(x, v, v_new, dt);
 }
 
 }  // namespace tcb
