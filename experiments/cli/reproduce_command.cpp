@@ -22,8 +22,9 @@ class ReproduceCommand final : public Command {
   explicit ReproduceCommand(CLI::App& parent) {
     app = parent.add_subcommand("reproduce", "Run the paper's experiment set and draw the report");
     app->footer(
-        "Runs every sweep in experiments/sweeps/paper/ (about 10 min on 2 cores; --quick: each run shortened\n"
-        "to the sweep's quick_steps, about 2 min), then `tcbench report DIR` (DIR/report/index.html).\n"
+        "Runs every sweep in experiments/sweeps/paper/ (about an hour on 2 cores, most of it the stack in both\n"
+        "response modes; --quick: each run shortened to the sweep's quick_steps, about 10 min), then\n"
+        "`tcbench report DIR` (DIR/report/index.html).\n"
         "Exit status: 0 all runs ok; 1 some run unstable or failed (the report still shows it); 2 bad input.");
     app->add_flag("--quick", m_options.quick, "Shortened runs (each sweep's quick_steps)");
     app->add_flag("--resume", m_options.resume, "Keep complete runs of an earlier reproduce in DIR");
