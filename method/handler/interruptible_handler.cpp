@@ -67,7 +67,10 @@ StepReport InterruptibleHandler::step(World& world, Budget& budget) {
         m_tracked[c.object][c.vertex] = c;
         Contact now = c;
         now.depth_m = tracked_depth_m(world, c);
-        if (!(now.depth_m > 0.0)) continue;  // moved out along the normal since: no force
+        // Moved out along the normal since the depth was computed: no force. A
+        // contact that has not moved gets full's force whatever its depth (its
+        // damper may push even at depth 0), so no budget stays bit for bit full.
+        if (!(now.depth_m > 0.0) && contact_offset_m(world, c) != c.depth_offset_m) continue;
         apply_depth_contact(world, now, penalty_force(world, now, params, cycle().settings().dt_s));
       } else {
         const Vec3 f = i < with_force ? c.force_n : penalty_force(world, c, params, cycle().settings().dt_s);

@@ -90,6 +90,8 @@ void add_force_link(World& world, const Contact& where, const Vec3& force_n, con
 
 void add_contact_link(World& world, const Contact& c, const ResponseParams& params, double dt_s) {
   if (c.depth_source == DepthSource::None || !(c.depth_m > 0.0)) return;
+  // A link with neither spring nor damper does nothing but couple the bodies' solves.
+  if (!(params.stiffness_n_per_m > 0.0) && !(params.damping_n_s_per_m > 0.0)) return;
   world.contact_links.push_back(link_of(world, c, c.depth_m, params));
   const ExplicitParts p = explicit_parts(world, c, params, dt_s);
   if (p.has_friction(params)) apply_contact_force(world, c, -p.friction_scale(params) * p.v_t);

@@ -8,8 +8,8 @@
 /// weights. The max(0, .) keeps damping from pulling objects together.
 /// Friction is Coulomb: f_t = -min(mu |f_n|, m v_t / dt) v_t / |v_t| with v_t
 /// the tangential relative velocity.
-/// Contact forces are explicit (applied over the next step), so damping and
-/// friction are clamped to what can at most stop the relative motion within
+/// Under explicit response (below) the whole force is applied over the next
+/// step as an external force, so damping and friction are clamped to what can at most stop the relative motion within
 /// one step: c = min(c_d, m / dt) and the m v_t / dt bound above, with m the
 /// reduced mass of the point and the tet at p (the point's mass when B is
 /// passive). Without these clamps a friction force on a gram-scale vertex

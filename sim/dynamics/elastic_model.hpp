@@ -26,7 +26,8 @@ class ElasticModel {
   /// Elastic forces at x (written, not added).
   virtual void elastic_forces(std::span<const Vec3> x_m, std::span<Vec3> f_n) const = 0;
   virtual const std::vector<double>& vertex_masses_kg() const = 0;
-  /// Iterations of the last linear solve (0 for explicit models).
+  /// Iterations of the last linear solve: the model's own, or those a coupled
+  /// contact solve reported to it (0 for an explicit step).
   virtual int last_solver_iterations() const { return 0; }
   /// False when the last linear solve stopped at its iteration limit.
   virtual bool last_solve_converged() const { return true; }

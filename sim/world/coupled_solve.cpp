@@ -47,6 +47,7 @@ class Component {
     int iterations = 0;
     bool converged = conjugate_gradients(v, tolerance, max_iterations, iterations);
     stats.iterations += iterations;
+    const int first_iterations = iterations;
     lambda = forces(v);
     std::int64_t pulling = 0;
     for (std::size_t l = 0; l < m_links.size(); ++l)
@@ -54,8 +55,10 @@ class Component {
     if (pulling > 0) {  // unilateral: drop the links that pull and solve once more
       stats.resolved = 1;
       stats.dropped = pulling;
-      converged = conjugate_gradients(v, tolerance, max_iterations, iterations);
+      const bool first_converged = converged;
+      converged = conjugate_gradients(v, tolerance, max_iterations, iterations) && first_converged;
       stats.iterations += iterations;
+      iterations += first_iterations;
       lambda = forces(v);
       for (std::size_t l = 0; l < m_links.size(); ++l) stats.still_pulling += m_active[l] && lambda[l] < 0.0;
     }
@@ -69,10 +72,13 @@ class Component {
       for (int k = 0; k < 4; ++k)
         m_world.bodies[link.tet_body].applied_contact_force_n[link.tet_vertices[k]] -= link.weights[k] * f;
     }
+    // The component's CG iterations (both solves) are reported once, on its
+    // first body, so a sum over the bodies counts each iteration once.
     for (const std::int32_t b : m_bodies) {
       Body& body = m_world.bodies[b];
       const auto n = static_cast<Eigen::Index>(3 * body.x_m.size());
-      body.model->end_linear_step(body.x_m, body.v_m_per_s, v.segment(m_offset[b], n), m_dt, iterations, converged);
+      body.model->end_linear_step(body.x_m, body.v_m_per_s, v.segment(m_offset[b], n), m_dt,
+                                  b == m_bodies.front() ? iterations : 0, converged);
     }
     return stats;
   }
