@@ -5,7 +5,7 @@
 namespace tcb {
 
 void JitterMeter::record(const World& world, std::int64_t step, std::int64_t steps_total) {
-  if (2 * step <= steps_total) return;  // the settled second half only
+  if (!in_settled_half(step, steps_total)) return;
   for (const Body& b : world.bodies) {
     if (b.passive) continue;
     double momentum = 0.0, mass = 0.0;

@@ -89,6 +89,10 @@ class Meter {
   virtual void summarize(Json& summary) const = 0;
 };
 
+/// Whether step (1-based) lies in the run's settled second half, where the
+/// resting-contact measures (jitter, settling) are taken.
+inline bool in_settled_half(std::int64_t step, std::int64_t steps_total) { return 2 * step > steps_total; }
+
 /// Appends a reason to summary["oracle_unmeasured"].
 void note_unmeasured(nlohmann::ordered_json& summary, const std::string& reason);
 

@@ -7,7 +7,7 @@
 namespace tcb {
 
 void SettledMeter::on_step(StepContext& ctx) {
-  if (2 * ctx.step <= m_steps_total) return;  // the settled second half only
+  if (!in_settled_half(ctx.step, m_steps_total)) return;
   const double speed = ctx.world.max_speed_m_per_s();
   if (!std::isfinite(speed)) return;  // the stability meter stops such a run
   m_max_speed.push_back(speed);

@@ -178,11 +178,18 @@ def load(root):
     return results
 
 
-def read_run(root, directory):
+def load_json(path):
+    """The parsed file, or None when it cannot be read or is not JSON."""
     try:
-        with open(os.path.join(directory, "run.json")) as f:
-            record = json.load(f)
+        with open(path) as f:
+            return json.load(f)
     except (OSError, UnicodeDecodeError, ValueError):
+        return None
+
+
+def read_run(root, directory):
+    record = load_json(os.path.join(directory, "run.json"))
+    if record is None:
         return None, "not valid JSON (still being written, or cut short)"
     if not isinstance(record, dict) or not isinstance(record.get("summary"), dict):
         return None, "no summary (the run did not finish)"
@@ -190,10 +197,8 @@ def read_run(root, directory):
 
 
 def read_sweep(directory):
-    try:
-        with open(os.path.join(directory, "sweep.json")) as f:
-            record = json.load(f)
-    except (OSError, UnicodeDecodeError, ValueError):
+    record = load_json(os.path.join(directory, "sweep.json"))
+    if record is None:
         return None, "not valid JSON"
     if not isinstance(record, dict) or not isinstance(record.get("runs"), list):
         return None, "no list of runs"
