@@ -24,7 +24,18 @@ const std::vector<MethodInfo>& method_registry() {
        .description = "variant (not in the paper): interruptible, but contacts known from earlier steps get the "
                       "penalty force of their depth tracked with the current positions instead of an extrapolated "
                       "force",
-       .make = [](const MethodSettings&) { return std::make_unique<InterruptibleHandler>(Stale::Track); },
+       .settings = {{.name = "keep_lost_cycles",
+                     .type = SettingSpec::Type::Integer,
+                     .default_value = std::int64_t{1},
+                     .min = 0,
+                     .max = 1e6,
+                     .description = "a tracked contact that a completed cycle no longer finds stays (inert while its "
+                                    "tracked depth is <= 0) for this many more cycles; 0: forgotten at once, like "
+                                    "the paper's history"}},
+       .make =
+           [](const MethodSettings& s) {
+             return std::make_unique<InterruptibleHandler>(Stale::Track, s.integer("keep_lost_cycles"));
+           },
        .uses_budget = true},
       {.name = "full",
        .description = "the whole collision cycle every step, never interrupted (the paper's reference)",

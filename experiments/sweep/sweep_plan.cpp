@@ -77,6 +77,7 @@ SweepPlan load_sweep_plan(const std::filesystem::path& path) {
   struct MethodEntry {
     std::string name, id;
     std::vector<std::string> sets;
+    std::optional<std::vector<SweepBudget>> budgets;  ///< this entry's own budgets, else the sweep's
   };
   std::vector<MethodEntry> entries;
   const toml::node* methods = r.node("methods");
@@ -102,6 +103,15 @@ SweepPlan load_sweep_plan(const std::filesystem::path& path) {
       e.name = e.id = *name;
       info = lookup(e.name);
       const MethodSettings settings = read_method_settings(mr, *info);
+      if (const auto labels = mr.string_list("budgets")) {
+        if (labels->empty()) mr.fail("budgets", "must list at least one budget");
+        e.budgets.emplace();
+        for (const auto& label : *labels) {
+          const auto b = parse_sweep_budget(label);
+          if (!b) mr.fail("budgets", "'" + label + "' is not none, ms:X, work:N (whole), full/K or full-work/K (K > 0)");
+          e.budgets->push_back(*b);
+        }
+      }
       mr.finish();
       for (const SettingSpec& spec : info->settings) {  // what differs from the defaults, in schema order
         const SettingValue& value = settings.values().at(spec.name);
@@ -126,6 +136,8 @@ SweepPlan load_sweep_plan(const std::filesystem::path& path) {
     if (!b) r.fail("budgets", "'" + label + "' is not none, ms:X, work:N (whole), full/K or full-work/K (K > 0)");
     budgets.push_back(*b);
   }
+  std::vector<std::vector<SweepBudget>> entry_budgets;  // per method entry
+  for (const MethodEntry& e : entries) entry_budgets.push_back(e.budgets ? *e.budgets : budgets);
   std::vector<std::uint64_t> seeds{0};
   if (const toml::node* n = r.node("seeds")) {
     const toml::array* a = n->as_array();
@@ -177,8 +189,9 @@ SweepPlan load_sweep_plan(const std::filesystem::path& path) {
   }
   r.finish();
 
-  const bool any_relative =
-      std::any_of(budgets.begin(), budgets.end(), [](const SweepBudget& b) { return b.is_relative(); });
+  bool any_relative = false;
+  for (const auto& list : entry_budgets)
+    for (const SweepBudget& b : list) any_relative = any_relative || b.is_relative();
   std::map<std::string, std::size_t> seen;
   for (const auto& scene : scenes)
     for (std::size_t s = 0; s < sets.size(); ++s)
@@ -202,9 +215,10 @@ SweepPlan load_sweep_plan(const std::filesystem::path& path) {
           plan.runs.push_back(run);
         };
         const std::string reference_id = id_part(scene) + "-full-none" + tail;
-        if (any_relative) add(MethodEntry{"full", "full", {}}, SweepBudget{}, "");  // the reference comes first
-        for (const auto& method : entries)
-          for (const auto& budget : budgets) {
+        if (any_relative) add(MethodEntry{"full", "full", {}, std::nullopt}, SweepBudget{}, "");  // the reference comes first
+        for (std::size_t m = 0; m < entries.size(); ++m)
+          for (const auto& budget : entry_budgets[m]) {
+            const MethodEntry& method = entries[m];
             if (!uses_budget[method.id]) {
               add(method, SweepBudget{}, "");
               continue;

@@ -4,7 +4,8 @@
 ///   [sweep]
 ///   description = "..."                    # optional
 ///   scenes  = ["plates20", "cube_drop"]    # names or paths, as `tcbench run` takes them
-///   methods = ["full", "interruptible", { name = "every_nth", n = 4 }]
+///   methods = ["full", "interruptible", { name = "every_nth", n = 4 },
+///              { name = "interruptible_tracked", budgets = ["full-work/6"] }]
 ///                                          # registry names, or a table with the method's
 ///                                          # settings under their [method.NAME] names
 ///                                          # (--set method.every_nth.n=4 for that run)

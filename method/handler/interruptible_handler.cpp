@@ -3,6 +3,10 @@
 #include "method/response/penalty_response.hpp"
 
 namespace tcb {
+
+InterruptibleHandler::InterruptibleHandler(Stale stale, std::int64_t keep_lost_cycles)
+    : m_stale(stale), m_keep_lost_cycles(stale == Stale::Track ? keep_lost_cycles : 0) {}
+
 std::optional<InterruptibleHandler::StaleForce> InterruptibleHandler::stale_force(const World& world,
                                                                                   std::int32_t object,
                                                                                   std::int32_t vertex) {
@@ -29,6 +33,17 @@ void InterruptibleHandler::apply_stale(World& world, const StaleForce& f) const 
   else add_force_link(world, f.where, f.force_n, cycle().settings().response(f.where.object, f.where.other));
 }
 
+void InterruptibleHandler::keep_lost_contacts(const std::vector<Contact>& contacts) {
+  // A point with a tracked contact that this cycle did not find (or found
+  // without a depth) keeps it for m_keep_lost_cycles more cycles; found with
+  // a depth, its count starts again.
+  for (std::size_t b = 0; b < m_lost_cycles.size(); ++b)
+    for (std::size_t v = 0; v < m_lost_cycles[b].size(); ++v)
+      if (m_has_history[b][v] && ++m_lost_cycles[b][v] > m_keep_lost_cycles) m_has_history[b][v] = 0;
+  for (const Contact& c : contacts)
+    if (c.depth_source != DepthSource::None) m_lost_cycles[c.object][c.vertex] = 0;
+}
+
 void InterruptibleHandler::init(const World& world, const CollisionSettings& settings) {
   CycleHandler::init(world, settings);
   for (const Body& b : world.bodies) {
@@ -36,6 +51,7 @@ void InterruptibleHandler::init(const World& world, const CollisionSettings& set
     m_has_history.emplace_back(b.x_m.size(), 0);
     m_applied.emplace_back(b.x_m.size(), 0);
     m_tracked.emplace_back(m_stale == Stale::Track ? b.x_m.size() : 0);
+    m_lost_cycles.emplace_back(m_keep_lost_cycles > 0 ? b.x_m.size() : 0, 0);
   }
 }
 
@@ -99,7 +115,9 @@ StepReport InterruptibleHandler::step(World& world, Budget& budget) {
   }
   if (done) {
     const std::int64_t cycle_steps = m_step - m_cycle_start + 1;
-    for (auto& flags : m_has_history) std::fill(flags.begin(), flags.end(), 0);
+    if (m_keep_lost_cycles > 0) keep_lost_contacts(contacts);
+    else
+      for (auto& flags : m_has_history) std::fill(flags.begin(), flags.end(), 0);
     for (const Contact& c : contacts) {
       if (c.depth_source == DepthSource::None) continue;
       record_depth_force(m_history[c.object][c.vertex], c, m_step, cycle_steps);

@@ -65,6 +65,22 @@ figures = ["jitter"]
   fs::remove(path);
 }
 
+TEST_CASE("a method entry's own budgets replace the sweep's for that entry only", "[sweep]") {
+  const fs::path path = write_sweep("entry_budgets", R"([sweep]
+scenes = ["cube_drop"]
+methods = ["interruptible", { name = "interruptible_tracked", budgets = ["full-work/3", "full-work/6"] }]
+budgets = ["work:100"]
+)");
+  const SweepPlan plan = load_sweep_plan(path);
+  std::vector<std::string> ids;
+  for (const SweepRun& run : plan.runs) ids.push_back(run.id);
+  // The relative budgets of the one entry bring in the reference run.
+  CHECK(ids == std::vector<std::string>{"cube_drop-full-none-s0", "cube_drop-interruptible-work_100-s0",
+                                        "cube_drop-interruptible_tracked-full_work_over_3-s0",
+                                        "cube_drop-interruptible_tracked-full_work_over_6-s0"});
+  fs::remove(path);
+}
+
 TEST_CASE("a sweep expands to scenes x sets x seeds groups, each with its reference first", "[sweep]") {
   const fs::path path = write_sweep("expand", R"([sweep]
 scenes = ["cube_drop", "plates20"]
@@ -135,6 +151,9 @@ TEST_CASE("malformed sweep files are rejected with the file and the line", "[swe
        ":3: unknown key 'm'"},
       {"[sweep]\nscenes = [\"cube_drop\"]\nmethods = [\"every_nth\", { name = \"every_nth\", n = 2 }]\nbudgets = [\"none\"]\n",
        ":3: sweep.methods: entry 1 repeats an earlier one"},
+      {"[sweep]\nscenes = [\"cube_drop\"]\nmethods = [{ name = \"interruptible\", budgets = [\"fast\"] }]\nbudgets = "
+       "[\"none\"]\n",
+       ":3: methods[0].budgets: 'fast' is not"},
       {"[sweep]\nscenes = [\"cube_drop\"]\nmethods = [\"full\"]\nbudgets = [\"none\"]\nfigures = [\"fig99\"]\n",
        ":5: sweep.figures: no report figure 'fig99'"},
   };

@@ -204,3 +204,64 @@ TEST_CASE("interruptible_tracked: a known contact's depth follows the current po
   CHECK(shallower.y() == 0.0);                  // tracked out of contact: no force
   CHECK(n_out == 0);
 }
+
+TEST_CASE("interruptible_tracked keeps a contact its cycles lost for keep_lost_cycles cycles, inert while out",
+          "[interruptible]") {
+  const test::TestScene scene = pressed_blocks();
+  const auto clear = [](World& w) {
+    for (auto& b : w.bodies) std::fill(b.contact_force_n.begin(), b.contact_force_n.end(), Vec3::Zero());
+  };
+  const auto force_on_cube = [](const World& w) {
+    Vec3 f = Vec3::Zero();
+    for (const Vec3& g : w.bodies[1].contact_force_n) f += g;
+    return f;
+  };
+  const auto lift = [](World& w, double up) {
+    for (Vec3& x : w.bodies[1].x_m) x.y() += up;
+  };
+  // Cycle 1 finds the pressed contacts; then `lost` completed cycles run with
+  // the cube lifted 2 cm (out of contact, so they find nothing); then the cube
+  // is put back and a step runs whose cycle has no depth yet (budget 0).
+  const auto back_after = [&](std::int64_t keep, int lost) {
+    World w = build_world(scene.world);
+    InterruptibleHandler h(InterruptibleHandler::Stale::Track, keep);
+    h.init(w, test::settings_of(w, scene));
+    Budget u = Budget::unlimited();
+    REQUIRE(h.step(w, u).cycle_done);
+    const Vec3 exact = force_on_cube(w);
+    for (int c = 0; c < lost; ++c) {
+      clear(w);
+      lift(w, 0.02);
+      Budget all = Budget::unlimited();
+      REQUIRE(h.step(w, all).cycle_done);
+      CHECK(force_on_cube(w) == Vec3::Zero());  // lifted: the completed cycle's answer, nothing
+      lift(w, -0.02);
+    }
+    clear(w);
+    Budget zero = Budget::work_units(0);
+    const StepReport r = h.step(w, zero);
+    CHECK_FALSE(r.cycle_done);
+    return std::make_tuple(force_on_cube(w), exact, r.estimated_forces);
+  };
+  {
+    const auto [f, exact, n] = back_after(1, 1);  // lost by one cycle, kept for one: tracked again at once
+    REQUIRE(exact.y() > 0.0);
+    CHECK(n > 0);
+    CHECK(f.y() == Approx(exact.y()).epsilon(1e-9));
+  }
+  {
+    const auto [f, exact, n] = back_after(0, 1);  // the paper's rule: forgotten when a cycle misses it
+    CHECK(n == 0);
+    CHECK(f == Vec3::Zero());
+  }
+  {
+    const auto [f, exact, n] = back_after(1, 2);  // lost by two cycles, kept for one: forgotten
+    CHECK(n == 0);
+    CHECK(f == Vec3::Zero());
+  }
+  {
+    const auto [f, exact, n] = back_after(2, 2);
+    CHECK(n > 0);
+    CHECK(f.y() == Approx(exact.y()).epsilon(1e-9));
+  }
+}
