@@ -1,5 +1,9 @@
 #include "experiments/check/thresholds.hpp"
 
+#include <fmt/format.h>
+
+#include <algorithm>
+
 #include "experiments/sweep/sweep_plan.hpp"
 
 #include "experiments/results/summary_csv.hpp"
@@ -36,6 +40,11 @@ std::vector<Threshold> load_thresholds(const std::filesystem::path& path) {
     if (const auto b = parse_sweep_budget(th.budget)) th.budget = b->label;
     else r.fail("budget", "'" + th.budget + "' is not none, ms:X, work:N, full/K or full-work/K");
     if (const auto seed = r.integer("seed", 0, std::int64_t{1} << 62)) th.seed = static_cast<std::uint64_t>(*seed);
+    th.response = r.string("response");
+    if (th.response && *th.response != "implicit" && *th.response != "explicit")
+      r.fail("response", "is \"implicit\" or \"explicit\"");
+    th.relative_to = r.string("relative_to");
+    if (th.relative_to && th.relative_to->empty()) r.fail("relative_to", "names a method label, e.g. \"full\"");
     th.min = r.number("min");
     th.max = r.number("max");
     if (!th.min && !th.max) throw InputError(path.string(), th.line, "threshold: give min, max or both");
@@ -45,6 +54,21 @@ std::vector<Threshold> load_thresholds(const std::filesystem::path& path) {
   }
   return out;
 }
+
+namespace {
+
+std::string response_of(const nlohmann::json& run) { return run.value("response", "explicit"); }
+
+/// The run's --set overrides without its method settings: what its reference shares.
+std::vector<std::string> scene_overrides(const nlohmann::json& run) {
+  std::vector<std::string> out;
+  for (const auto& o : run.value("overrides", nlohmann::json::array()))
+    if (o.is_string() && o.get<std::string>().rfind("method.", 0) != 0) out.push_back(o.get<std::string>());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+}  // namespace
 
 std::vector<CheckRow> check_thresholds(const std::vector<Threshold>& thresholds, const std::filesystem::path& dir) {
   // Run directories: DIR and every folder beneath it holding a complete
@@ -78,15 +102,53 @@ std::vector<CheckRow> check_thresholds(const std::vector<Threshold>& thresholds,
       const nlohmann::json budget = run.value("budget", nlohmann::json::object());
       if (budget.value("label", "none") != th.budget) continue;
       if (th.seed && run.value("seed", std::uint64_t{0}) != *th.seed) continue;
+      if (th.response && response_of(run) != *th.response) continue;
       matched = true;
-      CheckRow row{&th, name, summary_metric(run, th.metric), ""};
+      CheckRow row{&th, name, "", summary_metric(run, th.metric), ""};
+      if (th.relative_to) {
+        std::optional<double> reference;
+        for (const auto& [other_name, other] : runs) {
+          if (other.value("scene", "") != run.value("scene", "") ||
+              other.value("method_label", other.value("method", "")) != *th.relative_to ||
+              other.value("budget", nlohmann::json::object()).value("label", "none") != "none" ||
+              other.value("seed", std::uint64_t{0}) != run.value("seed", std::uint64_t{0}) ||
+              response_of(other) != response_of(run) || scene_overrides(other) != scene_overrides(run))
+            continue;
+          row.reference = other_name;
+          reference = summary_metric(other, th.metric);
+          break;
+        }
+        row.value = row.value && reference && *reference != 0.0 ? std::optional(*row.value / *reference) : std::nullopt;
+      }
       const bool ok = row.value && (!th.min || *row.value >= *th.min) && (!th.max || *row.value <= *th.max);
       row.verdict = !row.value ? "missing" : ok ? "pass" : "FAIL";
       rows.push_back(row);
     }
-    if (!matched) rows.push_back({&th, "", std::nullopt, "missing"});
+    if (!matched) rows.push_back({&th, "", "", std::nullopt, "missing"});
   }
   return rows;
+}
+
+std::string format_check_rows(const std::vector<CheckRow>& rows, const std::string& thresholds_file) {
+  std::string out = fmt::format("{:<14} {:<16} {:<14} {:<22} {:>12} {:>22}  {}\n", "scene", "method", "budget", "metric",
+                                "value", "bound", "verdict");
+  std::size_t failed = 0;
+  for (const CheckRow& r : rows) {
+    const Threshold& t = *r.threshold;
+    std::string bound = t.min && t.max ? fmt::format("[{:.4g}, {:.4g}]", *t.min, *t.max)
+                        : t.min       ? fmt::format(">= {:.4g}", *t.min)
+                                      : fmt::format("<= {:.4g}", *t.max);
+    if (t.relative_to) bound += " x " + *t.relative_to;
+    out += fmt::format("{:<14} {:<16} {:<14} {:<22} {:>12} {:>22}  {}\n", t.scene, t.method, t.budget, t.metric,
+                       r.value ? fmt::format("{:.6g}", *r.value) : "-", bound, r.verdict);
+    failed += r.verdict != "pass";
+  }
+  out += fmt::format("{} of {} checks passed ({})\n", rows.size() - failed, rows.size(), thresholds_file);
+  return out;
+}
+
+bool all_pass(const std::vector<CheckRow>& rows) {
+  return std::all_of(rows.begin(), rows.end(), [](const CheckRow& r) { return r.verdict == "pass"; });
 }
 
 }  // namespace tcb

@@ -7,12 +7,21 @@
 ///   method = "interruptible"   # the run's method_label: "every_nth(n=3)" for a non-default setting
 ///   budget = "work:20000"   # the run's budget label (run.json budget.label); default "none"
 ///   seed   = 0              # optional: otherwise every seed's run must pass
+///   response = "implicit"   # optional: only runs of that response mode (run.json response)
 ///   metric = "recall_min"   # a summary key; nested with dots: "depth_err.max"
+///   relative_to = "full"    # optional: bound metric / the same metric of that method's run
 ///   min = 0.95              # at least one of min / max
 ///   max = 1.0
 ///
+/// With relative_to, the bounded value is the run's metric divided by its
+/// reference's: the run of that method label with budget none, the same
+/// scene, seed and response mode, and the same --set overrides apart from
+/// method settings (the sweep's reference run). "Jitter within 2x of full's"
+/// is `metric = "jitter"`, `relative_to = "full"`, `max = 2`.
+///
 /// A threshold whose run is missing, or whose metric is null or absent in it,
-/// fails: a CI check must not pass because nothing was measured.
+/// fails: a CI check must not pass because nothing was measured. So does a
+/// relative one whose reference run is missing or measured 0.
 
 #include <filesystem>
 #include <optional>
@@ -24,6 +33,8 @@ namespace tcb {
 struct Threshold {
   std::string scene, method, budget = "none", metric;
   std::optional<std::uint64_t> seed;
+  std::optional<std::string> response;     ///< "implicit" or "explicit"
+  std::optional<std::string> relative_to;  ///< a method label: bound the ratio to its run's metric
   std::optional<double> min, max;
   int line = 0;
 };
@@ -31,7 +42,8 @@ struct Threshold {
 struct CheckRow {
   const Threshold* threshold = nullptr;
   std::string run;              ///< the run directory name; empty when none matched
-  std::optional<double> value;
+  std::string reference;        ///< relative thresholds: the reference run's directory name
+  std::optional<double> value;  ///< the metric, or its ratio to the reference's
   std::string verdict;          ///< "pass", "FAIL", "missing"
 };
 
@@ -40,5 +52,9 @@ std::vector<Threshold> load_thresholds(const std::filesystem::path& path);
 
 /// One row per threshold and matching run (at least one row per threshold).
 std::vector<CheckRow> check_thresholds(const std::vector<Threshold>& thresholds, const std::filesystem::path& dir);
+
+/// The rows as `tcbench check` prints them: a table, then "K of N checks passed (FILE)".
+std::string format_check_rows(const std::vector<CheckRow>& rows, const std::string& thresholds_file);
+bool all_pass(const std::vector<CheckRow>& rows);
 
 }  // namespace tcb

@@ -1,17 +1,22 @@
 // tcbench reproduce [--quick] [--out DIR]: the paper's experiment set, then
 // the report. The set is the sweep files in experiments/sweeps/paper/, run one
 // after the other with one job (wall-clock budgets need a quiet machine), each
-// into DIR/<sweep name>/; then `tcbench report DIR`.
+// into DIR/<sweep name>/; then `tcbench report DIR`; then, for full-length
+// runs, `tcbench check experiments/thresholds/paper.toml DIR` (also written to
+// DIR/check.txt): the claims the project holds itself to at the paper's
+// lengths. --quick runs are too short for them and are not checked.
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <chrono>
 #include <iostream>
 
+#include "experiments/check/thresholds.hpp"
 #include "experiments/cli/command.hpp"
 #include "experiments/cli/report_runner.hpp"
 #include "experiments/run/provenance.hpp"
 #include "experiments/sweep/sweep_runner.hpp"
+#include "sim/io/atomic_file.hpp"
 
 
 namespace tcb::cli {
@@ -24,8 +29,10 @@ class ReproduceCommand final : public Command {
     app->footer(
         "Runs every sweep in experiments/sweeps/paper/ (about an hour on 2 cores, most of it the stack in both\n"
         "response modes; --quick: each run shortened to the sweep's quick_steps, about 10 min), then\n"
-        "`tcbench report DIR` (DIR/report/index.html).\n"
-        "Exit status: 0 all runs ok; 1 some run unstable or failed (the report still shows it); 2 bad input.");
+        "`tcbench report DIR` (DIR/report/index.html), then (not with --quick) checks\n"
+        "experiments/thresholds/paper.toml against the runs (DIR/check.txt).\n"
+        "Exit status: 0 all runs ok and all checks pass; 1 some run unstable or failed, or a check failed (the\n"
+        "report still shows it); 2 bad input.");
     app->add_flag("--quick", m_options.quick, "Shortened runs (each sweep's quick_steps)");
     app->add_flag("--resume", m_options.resume, "Keep complete runs of an earlier reproduce in DIR");
     app->add_option("--out", m_out, "Result directory")->capture_default_str();
@@ -33,6 +40,8 @@ class ReproduceCommand final : public Command {
 
   int execute() override {
     const auto dir = source_tree_dir() / "experiments" / "sweeps" / "paper";
+    const auto thresholds_file = source_tree_dir() / "experiments" / "thresholds" / "paper.toml";
+    const std::vector<Threshold> thresholds = load_thresholds(thresholds_file);  // checked before anything runs
     std::vector<std::filesystem::path> files;
     for (const auto& entry : std::filesystem::directory_iterator(dir))
       if (entry.path().extension() == ".toml") files.push_back(entry.path());
@@ -60,6 +69,13 @@ class ReproduceCommand final : public Command {
       exit_code = std::max(exit_code, run_sweep(plan, m_options).exit_code());
     }
     const int report = run_report(m_out);
+    if (!m_options.quick) {
+      const std::vector<CheckRow> rows = check_thresholds(thresholds, m_out);
+      const std::string table = format_check_rows(rows, thresholds_file.string());
+      write_file_atomically(std::filesystem::path(m_out) / "check.txt", table);
+      std::cout << table;
+      if (!all_pass(rows)) exit_code = std::max(exit_code, 1);
+    }
     const double minutes = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / 60.0;
     std::cout << fmt::format("reproduce: {} runs in {:.1f} min -> {}/report/index.html\n", total, minutes, m_out);
     return report != 0 ? report : exit_code;

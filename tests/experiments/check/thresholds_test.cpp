@@ -131,6 +131,70 @@ min = 0.5
   fs::remove_all(dir);
 }
 
+TEST_CASE("check filters by response mode and bounds ratios to a reference run", "[check]") {
+  const fs::path dir = fs::temp_directory_path() / ("tcbench_check_rel_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  const auto run = [&](const std::string& name, const std::string& method, const std::string& budget,
+                       const std::string& response, double jitter, std::vector<std::string> overrides = {}) {
+    nlohmann::json j;
+    j["scene"] = "plates20";
+    j["method"] = j["method_label"] = method;
+    j["budget"] = {{"label", budget}};
+    j["seed"] = 0;
+    j["response"] = response;
+    j["overrides"] = overrides;
+    j["status"] = "ok";
+    j["summary"] = {{"jitter", jitter}};
+    fs::create_directories(dir / name);
+    write_file_atomically(dir / name / "run.json", j.dump());
+  };
+  run("full_implicit", "full", "none", "implicit", 0.02);
+  run("full_explicit", "full", "none", "explicit", 0.01, {"collision.response=explicit"});
+  run("tracked_implicit", "interruptible_tracked", "full-work/3", "implicit", 0.03,
+      {"method.interruptible_tracked.keep_lost_cycles=1"});  // method settings do not part it from full
+  run("tracked_explicit", "interruptible_tracked", "full-work/3", "explicit", 0.05, {"collision.response=explicit"});
+  run("lonely", "interruptible", "full-work/3", "implicit", 0.03, {"scene.dt=0.002"});  // no full with that set
+  const auto rows = check_thresholds(load_thresholds(thresholds(R"toml([[threshold]]
+scene = "plates20"
+method = "interruptible_tracked"
+budget = "full-work/3"
+response = "implicit"
+metric = "jitter"
+relative_to = "full"
+max = 2.0
+
+[[threshold]]
+scene = "plates20"
+method = "interruptible_tracked"
+budget = "full-work/3"
+metric = "jitter"
+relative_to = "full"
+max = 2.0
+
+[[threshold]]
+scene = "plates20"
+method = "interruptible"
+budget = "full-work/3"
+metric = "jitter"
+relative_to = "full"
+max = 2.0
+)toml")),
+                                     dir);
+  REQUIRE(rows.size() == 4);
+  CHECK(rows[0].run == "tracked_implicit");  // the explicit run is left out
+  CHECK(rows[0].reference == "full_implicit");
+  CHECK(*rows[0].value == Approx(1.5));
+  CHECK(rows[0].verdict == "pass");
+  CHECK(rows[1].run == "tracked_explicit");  // without response: both modes, each against its own full
+  CHECK(rows[1].reference == "full_explicit");
+  CHECK(*rows[1].value == Approx(5.0));
+  CHECK(rows[1].verdict == "FAIL");
+  CHECK(rows[2].run == "tracked_implicit");
+  CHECK(rows[3].run == "lonely");  // no reference with its overrides: nothing measured must not pass
+  CHECK(rows[3].verdict == "missing");
+  fs::remove_all(dir);
+}
+
 TEST_CASE("check rejects malformed thresholds files with exit 2, naming file and line", "[check]") {
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"[[threshold]]\nscene = \"plates20\"\nmethod = \"full\"\nmetric = \"recall_min\"\n", ":1: threshold: give min"},
@@ -138,6 +202,8 @@ TEST_CASE("check rejects malformed thresholds files with exit 2, naming file and
       {"[[threshold]]\nscene = \"plates20\"\nmetric = \"recall_min\"\nmin = 1\n", ":1: threshold: 'method' is required"},
       {"[[threshold]]\nscene = \"plates20\"\nmethod = \"full\"\nmetric = \"x\"\nmin = 1\nbound = 2\n", ":6: unknown key"},
       {"[[threshold]\n", ":1:"},
+      {"[[threshold]]\nscene = \"plates20\"\nmethod = \"full\"\nmetric = \"x\"\nmax = 1\nresponse = \"soft\"\n",
+       ":6: threshold.response"},
       {"title = 1\n", ":1: unknown key"},
   };
   for (const auto& [text, expected] : cases) {
