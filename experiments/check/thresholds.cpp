@@ -59,6 +59,21 @@ namespace {
 
 std::string response_of(const nlohmann::json& run) { return run.value("response", "explicit"); }
 
+bool noisy(const nlohmann::json& run) {
+  const auto summary = run.find("summary");
+  if (summary == run.end() || !summary->is_object()) return false;
+  const auto timing = summary->find("timing");
+  return timing != summary->end() && timing->is_object() && timing->value("verdict", "") == "noisy";
+}
+
+bool wall_clock(const Threshold& th, const nlohmann::json& run) {
+  const auto is = [&](const std::string& key) { return th.metric == key || th.metric.rfind(key + ".", 0) == 0; };
+  if (is("handling_cpu_ms") || is("overshoot_cpu_pct")) return false;  // the handling thread's own time
+  for (const char* key : {"handling_ms", "overshoot_pct", "dynamics_ms"})
+    if (is(key)) return true;
+  return run.value("budget", nlohmann::json::object()).value("kind", "") == "wall_ms";
+}
+
 /// The run's --set overrides without its method settings: what its reference shares.
 std::vector<std::string> scene_overrides(const nlohmann::json& run) {
   std::vector<std::string> out;
@@ -105,6 +120,7 @@ std::vector<CheckRow> check_thresholds(const std::vector<Threshold>& thresholds,
       if (th.response && response_of(run) != *th.response) continue;
       matched = true;
       CheckRow row{&th, name, "", summary_metric(run, th.metric), ""};
+      bool inconclusive = wall_clock(th, run) && noisy(run);
       if (th.relative_to) {
         std::optional<double> reference;
         for (const auto& [other_name, other] : runs) {
@@ -116,12 +132,13 @@ std::vector<CheckRow> check_thresholds(const std::vector<Threshold>& thresholds,
             continue;
           row.reference = other_name;
           reference = summary_metric(other, th.metric);
+          inconclusive = inconclusive || (wall_clock(th, other) && noisy(other));
           break;
         }
         row.value = row.value && reference && *reference != 0.0 ? std::optional(*row.value / *reference) : std::nullopt;
       }
       const bool ok = row.value && (!th.min || *row.value >= *th.min) && (!th.max || *row.value <= *th.max);
-      row.verdict = !row.value ? "missing" : ok ? "pass" : "FAIL";
+      row.verdict = !row.value ? "missing" : inconclusive ? "inconclusive" : ok ? "pass" : "FAIL";
       rows.push_back(row);
     }
     if (!matched) rows.push_back({&th, "", "", std::nullopt, "missing"});
@@ -132,7 +149,7 @@ std::vector<CheckRow> check_thresholds(const std::vector<Threshold>& thresholds,
 std::string format_check_rows(const std::vector<CheckRow>& rows, const std::string& thresholds_file) {
   std::string out = fmt::format("{:<14} {:<16} {:<14} {:<22} {:>12} {:>22}  {}\n", "scene", "method", "budget", "metric",
                                 "value", "bound", "verdict");
-  std::size_t failed = 0;
+  std::size_t failed = 0, inconclusive = 0;
   for (const CheckRow& r : rows) {
     const Threshold& t = *r.threshold;
     std::string bound = t.min && t.max ? fmt::format("[{:.4g}, {:.4g}]", *t.min, *t.max)
@@ -141,14 +158,23 @@ std::string format_check_rows(const std::vector<CheckRow>& rows, const std::stri
     if (t.relative_to) bound += " x " + *t.relative_to;
     out += fmt::format("{:<14} {:<16} {:<14} {:<22} {:>12} {:>22}  {}\n", t.scene, t.method, t.budget, t.metric,
                        r.value ? fmt::format("{:.6g}", *r.value) : "-", bound, r.verdict);
-    failed += r.verdict != "pass";
+    inconclusive += r.verdict == "inconclusive";
+    failed += r.verdict != "pass" && r.verdict != "inconclusive";
   }
-  out += fmt::format("{} of {} checks passed ({})\n", rows.size() - failed, rows.size(), thresholds_file);
+  out += fmt::format("{} of {} checks passed", rows.size() - failed - inconclusive, rows.size());
+  if (inconclusive > 0) out += fmt::format(", {} inconclusive (measured on a noisy machine)", inconclusive);
+  out += fmt::format(" ({})\n", thresholds_file);
   return out;
 }
 
-bool all_pass(const std::vector<CheckRow>& rows) {
-  return std::all_of(rows.begin(), rows.end(), [](const CheckRow& r) { return r.verdict == "pass"; });
+int check_exit_status(const std::vector<CheckRow>& rows, bool strict_timing) {
+  bool failed = false, inconclusive = false;
+  for (const CheckRow& r : rows) {
+    if (r.verdict == "inconclusive") inconclusive = true;
+    else if (r.verdict != "pass") failed = true;
+  }
+  if (failed || (inconclusive && strict_timing)) return 1;
+  return inconclusive ? 4 : 0;
 }
 
 }  // namespace tcb

@@ -22,6 +22,14 @@
 /// A threshold whose run is missing, or whose metric is null or absent in it,
 /// fails: a CI check must not pass because nothing was measured. So does a
 /// relative one whose reference run is missing or measured 0.
+///
+/// A wall-clock threshold (its run has a wall-clock budget, or its metric is
+/// wall time: handling_ms.*, overshoot_pct.*, dynamics_ms.*) on a run whose
+/// summary.timing.verdict is "noisy" (or on a reference that is) is
+/// "inconclusive": neither passed nor failed, since the scheduler had a hand
+/// in the number (metrics/timing_quality.hpp). CPU-time metrics
+/// (handling_cpu_ms, overshoot_cpu_pct) and work budgets are never
+/// inconclusive.
 
 #include <filesystem>
 #include <optional>
@@ -44,7 +52,7 @@ struct CheckRow {
   std::string run;              ///< the run directory name; empty when none matched
   std::string reference;        ///< relative thresholds: the reference run's directory name
   std::optional<double> value;  ///< the metric, or its ratio to the reference's
-  std::string verdict;          ///< "pass", "FAIL", "missing"
+  std::string verdict;          ///< "pass", "FAIL", "missing", "inconclusive"
 };
 
 /// Reads a thresholds file; InputError (file:line) for anything malformed.
@@ -55,6 +63,10 @@ std::vector<CheckRow> check_thresholds(const std::vector<Threshold>& thresholds,
 
 /// The rows as `tcbench check` prints them: a table, then "K of N checks passed (FILE)".
 std::string format_check_rows(const std::vector<CheckRow>& rows, const std::string& thresholds_file);
-bool all_pass(const std::vector<CheckRow>& rows);
+
+/// `tcbench check`'s exit status: 0 every row passed; 1 a row failed or is
+/// missing (or, with strict_timing, is inconclusive); 4 the rest passed but
+/// some are inconclusive.
+int check_exit_status(const std::vector<CheckRow>& rows, bool strict_timing);
 
 }  // namespace tcb

@@ -16,21 +16,26 @@ class CheckCommand final : public Command {
         "(dotted for nested keys: handling_ms.p99, depth_err.max) and min and/or max; optional response\n"
         "(implicit or explicit) and relative_to (a method label: the bound is on the ratio to that method's\n"
         "run with budget none, same scene, seed and response). A missing run, metric or reference fails.\n"
-        "Exit status: 0 all pass; 1 some fail; 2 malformed thresholds file.\n"
+        "A wall-clock threshold (wall budget, or a handling_ms/overshoot_pct/dynamics_ms metric) on a run\n"
+        "whose summary.timing.verdict is noisy is inconclusive, neither pass nor fail.\n"
+        "Exit status: 0 all pass; 1 some fail or missing (or inconclusive, with --strict-timing);\n"
+        "2 malformed thresholds file; 4 the others pass but some are inconclusive (a noisy machine).\n"
         "Example: experiments/thresholds/ci.toml (work-unit budgets: the same verdict on every machine).");
     app->add_option("THRESHOLDS", m_file, "The thresholds file (.toml)")->required();
     app->add_option("DIR", m_dir, "A results directory (a sweep's --out, or runs beneath it)")->required();
+    app->add_flag("--strict-timing", m_strict_timing, "Treat inconclusive (noisy-machine) checks as failures");
   }
 
   int execute() override {
     const std::vector<Threshold> thresholds = load_thresholds(m_file);  // the rows point into it
     const std::vector<CheckRow> rows = check_thresholds(thresholds, m_dir);
     std::cout << format_check_rows(rows, m_file);
-    return all_pass(rows) ? 0 : 1;
+    return check_exit_status(rows, m_strict_timing);
   }
 
  private:
   std::string m_file, m_dir;
+  bool m_strict_timing = false;
 };
 
 }  // namespace

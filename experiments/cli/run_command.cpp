@@ -46,6 +46,9 @@ class RunCommand final : public Command {
                     "Write a ParaView frame (DIR/frames/*.vtu, DIR/frames.pvd) every N steps")
         ->check(CLI::PositiveNumber);
     app->add_option("--out", m_out, "Result directory (default: results/runs/SCENE-METHOD)");
+    app->add_option("--pin", m_pin,
+                    "Pin the handling thread to this CPU (recorded in run.json; exit 2 when not allowed here)")
+        ->check(CLI::NonNegativeNumber);
     app->add_flag("--quiet", m_quiet, "Print nothing but errors");
   }
 
@@ -53,6 +56,7 @@ class RunCommand final : public Command {
     const auto path = resolve_scene(m_scene, default_scene_dirs());
     const SceneDesc scene = load_scene_file(path, m_options.overrides);
     if (m_steps >= 0) m_options.steps = m_steps;
+    if (m_pin >= 0) m_options.pin_cpu = m_pin;
     m_options.oracle = parse_oracle_schedule(m_oracle);
     if (app->count("--oracle-volume")) m_options.overlap = parse_oracle_schedule(m_overlap, "--oracle-volume");
     if (app->count("--budget-ms")) m_options.budget = {BudgetKind::WallMs, m_budget_ms};
@@ -78,6 +82,7 @@ class RunCommand final : public Command {
  private:
   std::string m_scene, m_out;
   std::int64_t m_steps = -1;
+  int m_pin = -1;
   std::string m_oracle = "off", m_overlap;
   double m_budget_ms = 0.0;
   std::uint64_t m_budget_work = 0;

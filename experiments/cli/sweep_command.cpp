@@ -38,12 +38,15 @@ class SweepCommand final : public Command {
         ->capture_default_str();
     app->add_option("--shard", m_shard, "Run only shard I of N (0-based, whole scene/seed/set groups)");
     app->add_flag("--resume", m_options.resume, "Skip runs whose run.json is complete; redo the rest");
+    app->add_option("--pin", m_pin,
+                    "Pin each job's handling thread to its own CPU: auto, or a list like 2,3 (at least --jobs CPUs)");
     app->add_flag("--quiet", m_quiet, "Print nothing but errors and the final line");
   }
 
   int execute() override {
     const SweepPlan plan = load_sweep_plan(m_file);
     if (!m_shard.empty()) std::tie(m_options.shard_index, m_options.shard_count) = parse_shard(m_shard);
+    if (!m_pin.empty()) m_options.pin_cpus = parse_pin_cpus(m_pin, m_options.jobs);
     m_options.out_dir = m_out;
     m_options.executable = std::filesystem::read_symlink("/proc/self/exe");
     const auto t0 = std::chrono::steady_clock::now();
@@ -64,7 +67,7 @@ class SweepCommand final : public Command {
   }
 
  private:
-  std::string m_file, m_out, m_shard;
+  std::string m_file, m_out, m_shard, m_pin;
   bool m_quiet = false;
   SweepOptions m_options;
 };

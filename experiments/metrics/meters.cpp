@@ -11,6 +11,7 @@
 #include "experiments/metrics/stability_meter.hpp"
 #include "experiments/metrics/top_centre_meter.hpp"
 #include "experiments/metrics/tunneling_meter.hpp"
+#include "experiments/metrics/timing_meter.hpp"
 #include "experiments/metrics/work_meter.hpp"
 
 namespace tcb {
@@ -18,6 +19,7 @@ namespace tcb {
 std::vector<std::unique_ptr<Meter>> make_meters(const RunSetup& run) {
   std::vector<std::unique_ptr<Meter>> meters;
   meters.push_back(std::make_unique<HandlingMeter>(run));
+  meters.push_back(std::make_unique<TimingMeter>(run));
   meters.push_back(std::make_unique<WorkMeter>());
   meters.push_back(std::make_unique<OracleMeter>(run));  // before the meters that read its frames
   meters.push_back(std::make_unique<LatencyMeter>(run));

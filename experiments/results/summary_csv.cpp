@@ -18,9 +18,11 @@ void flatten(const Json& node, const std::string& prefix, std::vector<std::pair<
       flatten(it.value(), prefix.empty() ? it.key() : prefix + "." + it.key(), out);
   } else if (node.is_number()) {
     out.emplace_back(prefix, node.dump());
+  } else if (node.is_string()) {
+    out.emplace_back(prefix, node.get<std::string>());  // timing.verdict: a sweep records it per run
   } else if (node.is_null()) {
     out.emplace_back(prefix, "");
-  }  // arrays and strings (oracle_unmeasured, ...) stay in run.json
+  }  // arrays (oracle_unmeasured, timing.reasons, ...) stay in run.json
 }
 
 std::string csv_cell(const std::string& text) {

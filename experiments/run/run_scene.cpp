@@ -10,6 +10,7 @@
 #include "experiments/metrics/meters.hpp"
 #include "experiments/run/provenance.hpp"
 #include "experiments/run/run_record.hpp"
+#include "experiments/run/thread_clock.hpp"
 #include "method/detection/spatial_hash.hpp"
 #include "sim/io/input_error.hpp"
 
@@ -64,6 +65,8 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
   World world = build_world(scene.world);
   const RunSetup setup{scene, world, options.budget, options.oracle, options.overlap.value_or(options.oracle),
                        steps_total};
+  if (options.pin_cpu)
+    if (const std::string why = pin_current_thread(*options.pin_cpu); !why.empty()) throw InputError("--pin", 0, why);
   const std::vector<std::unique_ptr<Meter>> meters = make_meters(setup);
   const CollisionSettings collision =
       resolve_collision_settings(world, scene.collision, scene.world.dt_s,
@@ -84,7 +87,10 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
 
   for (std::int64_t s = 0; s < steps_total; ++s) {
     Budget budget = options.budget.start();
+    // The thread clocks are read inside the wall interval, so CPU time <= wall
+    // time up to the clocks' resolution (handling_cpu_ms, timing_meter.hpp).
     const auto t_handler = Clock::now();
+    const ThreadTimes cpu_before = read_thread_times();
     StepReport report;
     try {
       report = handler->step(world, budget);
@@ -92,6 +98,7 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
       outcome = {"unstable", fmt::format("collision handling at step {}: {}", world.step_index + 1, e.what()), s, 0.0};
       break;
     }
+    const ThreadTimes cpu_after = read_thread_times();
     const double handling_ms = ms_since(t_handler);
     StepRow row = record.row();
     StepContext ctx{.step = world.step_index + 1,
@@ -99,6 +106,8 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
                     .handler = *handler,
                     .report = report,
                     .handling_ms = handling_ms,
+                    .handling_cpu_ms = cpu_after.cpu_ms - cpu_before.cpu_ms,
+                    .handling_switches = cpu_after.involuntary_switches - cpu_before.involuntary_switches,
                     .row = row};
     for (const auto& m : meters) m->before_dynamics(ctx);
     const auto t_dynamics = Clock::now();
@@ -138,6 +147,7 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
   run["dt"] = scene.world.dt_s;
   run["response"] = scene.collision.response_mode == ResponseMode::Implicit ? "implicit" : "explicit";
   run["seed"] = options.seed;
+  run["pin"] = options.pin_cpu ? Json(*options.pin_cpu) : Json(nullptr);
   run["oracle"] = setup.oracle.label();
   run["oracle_volume"] = setup.overlap.label();
   run["overrides"] = scene_overrides(options.overrides);

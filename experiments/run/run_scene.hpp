@@ -3,7 +3,7 @@
 /// and write DIR/steps.csv and DIR/run.json (docs/contract.md "Results of one
 /// run"). One step (docs/architecture.md):
 ///
-///   handler.step(world, budget)    timed: handling_ms
+///   handler.step(world, budget)    timed: handling_ms (wall), handling_cpu_ms (thread CPU time)
 ///   meters: before_dynamics        oracle, latency, probe force (never timed as handling)
 ///   world.step(dt)                 timed: dynamics_ms
 ///   meters: on_step                the row of steps.csv; stability
@@ -43,6 +43,9 @@ struct RunOptions {
   std::vector<std::string> overrides;
   std::vector<std::string> argv;  ///< the command line as given, recorded in run.json
   int record_every = 0;           ///< write a VTU frame every N steps (0: none)
+  /// Pin the run's thread (the handling thread) to this CPU before the first
+  /// step; InputError when it cannot be done. Recorded in run.json "pin".
+  std::optional<int> pin_cpu;
   /// Called after every step with (steps done, steps total); for progress.
   std::function<void(std::int64_t, std::int64_t)> on_step;
   /// Called once per warning about the settings (also recorded in run.json).

@@ -7,12 +7,15 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <deque>
 #include <map>
 #include <stdexcept>
 
 #include "experiments/results/summary_csv.hpp"
+#include "experiments/run/thread_clock.hpp"
+#include "sim/io/input_error.hpp"
 #include "sim/io/atomic_file.hpp"
 
 namespace tcb {
@@ -127,6 +130,13 @@ SweepOutcome run_sweep(const SweepPlan& plan, const SweepOptions& options) {
     pending.push_back(run);
   }
   std::map<pid_t, SweepRun> running;
+  std::map<pid_t, int> running_cpu;  // with pin_cpus: the CPU each running run holds
+  const auto free_cpu = [&]() {
+    for (const int cpu : options.pin_cpus)
+      if (std::none_of(running_cpu.begin(), running_cpu.end(), [&](const auto& r) { return r.second == cpu; }))
+        return cpu;
+    return -1;
+  };
   const auto reference_done = [&](const SweepRun& run) {
     if (run.reference_id.empty()) return true;
     const bool ours = std::any_of(running.begin(), running.end(), [&](const auto& r) { return r.second.id == run.reference_id; }) ||
@@ -143,7 +153,9 @@ SweepOutcome run_sweep(const SweepPlan& plan, const SweepOptions& options) {
       const SweepRun run = *it;
       it = pending.erase(it);
       std::string error;
-      const auto args = budget_args(run, runs_dir, error);
+      auto args = budget_args(run, runs_dir, error);
+      const int cpu = options.pin_cpus.empty() ? -1 : free_cpu();
+      if (cpu >= 0) args.insert(args.end(), {"--pin", std::to_string(cpu)});
       if (!error.empty()) {
         fs::create_directories(runs_dir / run.id);
         write_file_atomically(runs_dir / run.id / "log.txt", "not started: " + error + "\n");
@@ -151,7 +163,9 @@ SweepOutcome run_sweep(const SweepPlan& plan, const SweepOptions& options) {
         continue;
       }
       fs::create_directories(runs_dir / run.id);
-      running[start(plan, run, options, args)] = run;
+      const pid_t pid = start(plan, run, options, args);
+      running[pid] = run;
+      if (cpu >= 0) running_cpu[pid] = cpu;
       started = true;
     }
     if (running.empty()) {
@@ -167,6 +181,7 @@ SweepOutcome run_sweep(const SweepPlan& plan, const SweepOptions& options) {
     if (it == running.end()) continue;
     const SweepRun run = it->second;
     running.erase(it);
+    running_cpu.erase(pid);
     const int code = WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : -1;
     finish(run, code == 0 ? "ok" : code == 1 && read_complete_run(runs_dir / run.id) ? "unstable" : "failed");
   }
@@ -180,6 +195,38 @@ SweepOutcome run_sweep(const SweepPlan& plan, const SweepOptions& options) {
   write_summary_csv(options.out_dir / "summary.csv", rows);
   write_sweep_json(plan, options.out_dir);
   return outcome;
+}
+
+std::vector<int> parse_pin_cpus(const std::string& text, std::size_t jobs) {
+  const std::vector<int> allowed = allowed_cpus();
+  std::vector<int> cpus;
+  if (text == "auto") {
+    cpus.assign(allowed.rbegin(), allowed.rend());
+  } else {
+    std::size_t start = 0;
+    while (start <= text.size()) {
+      const std::size_t comma = std::min(text.find(',', start), text.size());
+      const std::string item = text.substr(start, comma - start);
+      std::size_t used = 0;
+      int cpu = -1;
+      try {
+        cpu = std::stoi(item, &used);
+      } catch (const std::exception&) {
+      }
+      if (item.empty() || used != item.size() || cpu < 0)
+        throw InputError("--pin", 0, "expected auto or a list of CPU numbers like 2,3, not '" + text + "'");
+      if (std::find(allowed.begin(), allowed.end(), cpu) == allowed.end())
+        throw InputError("--pin", 0, "CPU " + item + " is not one this process may use (" +
+                                         std::to_string(allowed.size()) + " allowed)");
+      cpus.push_back(cpu);
+      start = comma + 1;
+    }
+  }
+  if (cpus.size() < jobs)
+    throw InputError("--pin", 0, fmt::format("{} jobs need {} CPUs to pin to, '{}' gives {}", jobs, jobs, text,
+                                             cpus.size()));
+  cpus.resize(jobs);
+  return cpus;
 }
 
 }  // namespace tcb

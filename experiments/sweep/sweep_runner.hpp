@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "experiments/sweep/sweep_plan.hpp"
 
@@ -25,6 +26,9 @@ struct SweepOptions {
   std::size_t shard_index = 0, shard_count = 1;
   bool resume = false;
   bool quick = false;  ///< use the plan's quick_steps (when it has them) as every run's length
+  /// CPUs to pin runs to (`tcbench run --pin`): each running run gets one no
+  /// other running run holds; needs at least `jobs` of them. Empty: unpinned.
+  std::vector<int> pin_cpus;
   /// After each run ends (or is skipped): done, total, the run, its status.
   std::function<void(std::size_t, std::size_t, const SweepRun&, const std::string&)> on_run;
 };
@@ -35,5 +39,12 @@ struct SweepOutcome {
 };
 
 SweepOutcome run_sweep(const SweepPlan& plan, const SweepOptions& options);
+
+/// `--pin` of sweep and reproduce: "auto" (the CPUs this process may use,
+/// highest first, so CPU 0 and its interrupts are left alone when a job
+/// needs fewer) or a comma list "2,3". The result has exactly `jobs` CPUs.
+/// InputError naming --pin when there are fewer than `jobs` CPUs, or a CPU
+/// is not allowed here.
+std::vector<int> parse_pin_cpus(const std::string& text, std::size_t jobs);
 
 }  // namespace tcb

@@ -195,6 +195,62 @@ max = 2.0
   fs::remove_all(dir);
 }
 
+TEST_CASE("a wall-clock threshold on a noisy run is inconclusive: exit 4, or 1 with --strict-timing", "[check]") {
+  const fs::path dir = fs::temp_directory_path() / ("tcbench_check_noisy_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  const auto run = [&](const std::string& name, const std::string& kind, const std::string& verdict) {
+    nlohmann::json j;
+    j["scene"] = "plates20";
+    j["method"] = j["method_label"] = "interruptible";
+    j["budget"] = {{"kind", kind}, {"label", kind == "wall_ms" ? "ms:3.5" : "work:100"}};
+    j["seed"] = 0;
+    j["status"] = "ok";
+    j["summary"] = {{"recall_min", 0.9},
+                    {"overshoot_pct", {{"p99", 4.0}}},
+                    {"overshoot_cpu_pct", {{"p99", 1.0}}},
+                    {"timing", {{"verdict", verdict}}}};
+    fs::create_directories(dir / name);
+    write_file_atomically(dir / name / "run.json", j.dump());
+  };
+  run("wall", "wall_ms", "noisy");
+  run("work", "work", "noisy");
+  const auto file = thresholds(R"toml([[threshold]]
+scene = "plates20"
+method = "interruptible"
+budget = "ms:3.5"
+metric = "overshoot_pct.p99"
+max = 5.0
+
+[[threshold]]
+scene = "plates20"
+method = "interruptible"
+budget = "ms:3.5"
+metric = "overshoot_cpu_pct.p99"
+max = 5.0
+
+[[threshold]]
+scene = "plates20"
+method = "interruptible"
+budget = "work:100"
+metric = "recall_min"
+min = 0.5
+)toml");
+  const std::vector<Threshold> t = load_thresholds(file);
+  const auto rows = check_thresholds(t, dir);
+  REQUIRE(rows.size() == 3);
+  CHECK(rows[0].verdict == "inconclusive");  // a wall budget on a noisy machine: the scheduler's number too
+  CHECK(rows[1].verdict == "pass");          // CPU time is the method's own
+  CHECK(rows[2].verdict == "pass");          // a work budget does not depend on the clock
+  CHECK(check_exit_status(rows, false) == 4);
+  CHECK(check_exit_status(rows, true) == 1);
+  CHECK(cli({"check", file.string(), dir.string()}) == 4);
+  CHECK(cli({"check", "--strict-timing", file.string(), dir.string()}) == 1);
+  // The same run measured quiet: an ordinary pass; a failing one still fails.
+  run("wall", "wall_ms", "quiet");
+  CHECK(cli({"check", file.string(), dir.string()}) == 0);
+  fs::remove_all(dir);
+}
+
 TEST_CASE("check rejects malformed thresholds files with exit 2, naming file and line", "[check]") {
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"[[threshold]]\nscene = \"plates20\"\nmethod = \"full\"\nmetric = \"recall_min\"\n", ":1: threshold: give min"},

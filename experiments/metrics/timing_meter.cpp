@@ -1,0 +1,44 @@
+#include "experiments/metrics/timing_meter.hpp"
+
+#include "experiments/metrics/timing_quality.hpp"
+#include "experiments/run/thread_clock.hpp"
+
+namespace tcb {
+
+TimingMeter::TimingMeter(const RunSetup& run) : m_budget(run.budget), m_start(sample_machine()) {}
+
+void TimingMeter::on_step(StepContext& ctx) {
+  ++m_steps;
+  m_switches += ctx.handling_switches;
+  const double base = m_budget.kind == BudgetKind::WallMs && m_budget.value > 0.0 ? m_budget.value : ctx.handling_ms;
+  if (is_preempted(ctx.handling_ms, ctx.handling_cpu_ms, base)) ++m_preempted;
+}
+
+void TimingMeter::summarize(Json& summary) const {
+  const MachineSample end = sample_machine();
+  TimingEvidence e;
+  e.steps = m_steps;
+  e.preempted_steps = m_preempted;
+  e.other_busy_cpus = other_busy_cpus(m_start, end);
+  e.cpus = online_cpus();
+  e.loadavg_start = m_start.loadavg_1min;
+  e.governor = cpu_governor();
+  e.pinned_cpu = pinned_cpu();
+  const TimingVerdict v = timing_verdict(e);
+  const auto opt = [](const auto& o) { return o ? Json(*o) : Json(nullptr); };
+  summary["timing"] = {
+      {"verdict", v.noisy ? "noisy" : "quiet"},
+      {"reasons", v.reasons},
+      {"notes", v.notes},
+      {"preempted_steps", m_preempted},
+      {"preempted_step_share", m_steps > 0 ? Json(static_cast<double>(m_preempted) / static_cast<double>(m_steps))
+                                           : Json(nullptr)},
+      {"involuntary_switches", m_switches},
+      {"other_busy_cpus", opt(e.other_busy_cpus)},
+      {"cpus", e.cpus},
+      {"loadavg_1min", {{"start", opt(m_start.loadavg_1min)}, {"end", opt(end.loadavg_1min)}}},
+      {"governor", opt(e.governor)},
+      {"pinned_cpu", opt(e.pinned_cpu)}};
+}
+
+}  // namespace tcb

@@ -1,0 +1,34 @@
+#pragma once
+/// What the calling thread itself spent, for telling a method's overshoot from
+/// the operating system's: its CPU time and its involuntary context switches
+/// (the scheduler took the CPU away). Linux: CLOCK_THREAD_CPUTIME_ID and
+/// getrusage(RUSAGE_THREAD). The handler runs on the run loop's thread (no
+/// worker threads), so the run loop's thread is the handling thread.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace tcb {
+
+/// A reading of the calling thread's clocks.
+struct ThreadTimes {
+  double cpu_ms = 0.0;                     ///< CPU time of the thread since it started (ms)
+  std::int64_t involuntary_switches = 0;   ///< preemptions of the thread since it started
+};
+
+ThreadTimes read_thread_times();
+
+/// The CPUs this process may run on (sched_getaffinity), ascending.
+std::vector<int> allowed_cpus();
+
+/// Pins the calling thread to `cpu`. Empty on success, else why not (the CPU
+/// does not exist or is not allowed here, or the kernel refused).
+std::string pin_current_thread(int cpu);
+
+/// The CPU the calling thread is pinned to: its affinity holds exactly one
+/// CPU; nullopt otherwise.
+std::optional<int> pinned_cpu();
+
+}  // namespace tcb
