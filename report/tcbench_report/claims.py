@@ -115,13 +115,43 @@ def vs_reference(run, ref, key, unit):
     return mine if ref is None or ref.metric(key) is None else f"{mine} (full {num(ref.metric(key), unit)})"
 
 
+INCONCLUSIVE = "inconclusive"
+
+
 def worst_overshoot(runs, ctx):
+    """Judged on wall time where the runs were measured on a quiet machine; a noisy run's wall overshoot
+    is partly the scheduler's, so it is shown (with its CPU-time overshoot) but decides nothing."""
     if not runs:
         return UNMEASURED, UNMEASURED
-    worst = max(runs, key=lambda r: r.metric("overshoot_pct.p99"))
-    p99 = worst.metric("overshoot_pct.p99")
-    return (f"overshoot p99 up to {p99:.1f} % ({worst.name}; {plural(len(runs), 'run')})",
-            HOLDS if p99 < OVERSHOOT_PCT else FAILS)
+
+    def worst(group, key):
+        known = [r for r in group if r.metric(key) is not None]
+        return max(known, key=lambda r: r.metric(key)) if known else None
+
+    def text(group, what):
+        wall, cpu = worst(group, "overshoot_pct.p99"), worst(group, "overshoot_cpu_pct.p99")
+        out = f"{what}: overshoot p99 up to {wall.metric('overshoot_pct.p99'):.1f} % ({wall.name}"
+        out += f"; {plural(len(group), 'run')})"
+        if cpu is not None:
+            out += f", CPU-time overshoot p99 up to {cpu.metric('overshoot_cpu_pct.p99'):.1f} % ({cpu.name})"
+        return out
+
+    quiet = [r for r in runs if r.timing != "noisy"]
+    noisy = [r for r in runs if r.timing == "noisy"]
+    parts = []
+    if quiet:
+        parts.append(text(quiet, "quiet machine" if noisy or any(r.timing for r in quiet) else "all runs"))
+    if noisy:
+        parts.append(text(noisy, "noisy machine"))
+    measured = "; ".join(parts)
+    if not quiet:
+        cpu = worst(noisy, "overshoot_cpu_pct.p99")
+        cpu_text = f"CPU-time overshoot {cpu.metric('overshoot_cpu_pct.p99'):.1f} %" if cpu else "no CPU time"
+        return measured, f"{INCONCLUSIVE}: measured on a noisy machine ({cpu_text})"
+    verdict = HOLDS if worst(quiet, "overshoot_pct.p99").metric("overshoot_pct.p99") < OVERSHOOT_PCT else FAILS
+    if noisy:
+        verdict += f" on the quiet runs; {plural(len(noisy), 'run')} {INCONCLUSIVE} (noisy machine)"
+    return measured, verdict
 
 
 def best_speedup(runs, ctx):
@@ -249,7 +279,8 @@ CLAIMS = [
           paper=f"< {OVERSHOOT_PCT:g} %",
           figure="overshoot", select=Select(methods=("interruptible",), budget_kinds=("wall_ms",),
                                           measured=("overshoot_pct.p99",)),
-          metrics=("overshoot_pct.p99",), rule=worst_overshoot),
+          metrics=("overshoot_pct.p99", "overshoot_cpu_pct.p99", "timing.verdict"), rule=worst_overshoot,
+          ours=("judged on wall time on quiet runs only (summary.timing): a noisy run's is inconclusive",)),
     Claim(id="speedup",
           text="Interruptible handling saves up to two thirds of the collision handling time",
           paper=f"up to {SPEEDUP:g}x (120 -> 40 ms)",

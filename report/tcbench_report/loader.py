@@ -79,6 +79,13 @@ class Run:
     def response_recorded(self):
         return isinstance(self.record.get("response"), str)
 
+    @property
+    def timing(self):
+        """"quiet" or "noisy": the run's timing verdict (summary.timing.verdict); None for runs older
+        than the verdict. A noisy run's wall-clock numbers are partly the scheduler's."""
+        verdict = ((self.summary or {}).get("timing") or {}).get("verdict")
+        return verdict if verdict in ("quiet", "noisy") else None
+
     def budget_order(self):
         """Sort key: no budget, then wall, then work; relative budgets from the largest (full/2 before
         full/10), then absolute ones from the largest."""

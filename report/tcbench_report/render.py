@@ -140,8 +140,9 @@ def page(blocks):
                 for k, c in enumerate(row):
                     cls = ""
                     if k == b.verdict_column and c != NOT_MEASURED:
-                        cls = (" class='yes'" if str(c).startswith("holds") else
-                               " class='part'" if str(c).startswith("partly") else " class='no'")
+                        cls = (" class='yes'" if str(c).startswith("holds") and "inconclusive" not in str(c) else
+                               " class='part'" if str(c).startswith(("partly", "holds", "inconclusive"))
+                               else " class='no'")
                     cells.append(f"<td{cls}>{e(str(c))}</td>")
                 out.append("<tr>" + "".join(cells) + "</tr>")
             out.append("</table>")
