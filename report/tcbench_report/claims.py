@@ -154,15 +154,30 @@ def worst_overshoot(runs, ctx):
     return measured, verdict
 
 
+def speedup_range(rows, what):
+    """"median (p50) handling time: up to 3.10x (run a), down to 1.20x (run b), 2 runs": the range of
+    (run, speed-up) rows, `what` naming the statistic; "" when there are none."""
+    if not rows:
+        return ""
+    best, low = max(rows, key=lambda row: row[1]), min(rows, key=lambda row: row[1])
+    text = f"{what}: up to {best[1]:.2f}x ({best[0].name})"
+    if len(rows) > 1:
+        text += f", down to {low[1]:.2f}x ({low[0].name}), {plural(len(rows), 'run')}"
+    return text
+
+
 def best_speedup(runs, ctx):
+    """Judged on the median (p50) per-step handling time, the statistic a budget full/K divides; the p99
+    speed-up (what a deadline sees) is shown beside it and decides nothing."""
     rows = pairing.budgeted_with_reference(runs, ctx.runs)
     if not rows:
         return UNMEASURED, UNMEASURED
     best = max(rows, key=lambda row: row[2])
-    low = min(rows, key=lambda row: row[2])
-    measured = f"up to {best[2]:.2f}x median ({best[0].name})"
-    if len(rows) > 1:
-        measured += f", down to {low[2]:.2f}x ({low[0].name}), {plural(len(rows), 'run')}"
+    tails = [(run, pairing.speedup(run, ref, "p99")) for run, ref, _ in rows]
+    measured = "; ".join(part for part in (
+        speedup_range([(run, ratio) for run, _, ratio in rows], "median (p50) handling time"),
+        speedup_range([(run, tail) for run, tail in tails if tail is not None],
+                      "p99 handling time (shown, not judged)")) if part)
     verdict = HOLDS if best[2] >= SPEEDUP_MIN else FAILS
     return measured, f"{verdict} (the budget sets it; what it costs is in the speed-up figure)"
 
@@ -197,7 +212,7 @@ def rests_plausibly(runs, ctx):
             good += ok
             height = (f"top centre {h0:.3f} -> {h1:.3f} m: {'standing' if standing else 'fallen'} (ours)"
                       if h0 is not None and h1 is not None else "height not measured")
-            jit = "jitter not measured" if jitter is None else f"jitter {jitter:.3g} m/s" + (
+            jit = "jitter not measured" if jitter is None else f"jitter (RMS) {jitter:.3g} m/s" + (
                 f" = {ratio:.3g}x full's: {'plausible' if plausible else 'implausible'} (ours)"
                 if ratio is not None else " (no reference to compare)")
             settled = [f"{name} {vs_reference(r, ref, key, unit)}" for name, key, unit in SETTLED
@@ -215,7 +230,8 @@ def jitters(runs, ctx):
     if not rows:
         return UNMEASURED, UNMEASURED
     loud = [r for r, x in rows if x > JITTER_FACTOR]
-    measured = "; ".join(f"{r.name}: jitter {r.metric('jitter'):.3g} m/s = {x:.3g}x full's" for r, x in rows)
+    measured = "; ".join(f"{r.name}: jitter (RMS) {r.metric('jitter'):.3g} m/s = {x:.3g}x full's"
+                         for r, x in rows)
     return measured, share(len(loud), len(rows))
 
 
@@ -236,7 +252,7 @@ def extrapolation_steadies(runs, ctx):
             compared += 1
             good += mine < theirs
             ratio = f" ({mine / theirs:.2f}x)" if theirs else ""
-            notes.append(f"{where(r, group)}: jitter {mine:.3g} m/s with extrapolation, {theirs:.3g} m/s without"
+            notes.append(f"{where(r, group)}: jitter (RMS) {mine:.3g} m/s with extrapolation, {theirs:.3g} m/s without"
                          + ratio)
         if compared:
             results.append((label, good, compared))
@@ -247,19 +263,20 @@ def extrapolation_steadies(runs, ctx):
 
 
 def latency_bound(runs, ctx):
-    """Runs with latency <= LATENCY_STEPS never tunnel; some with more do."""
+    """Runs whose longest latency (latency_steps.max, over penetration episodes) is <= LATENCY_STEPS never
+    tunnel; some with more do."""
     if not runs:
         return UNMEASURED, UNMEASURED
     low = [r for r in runs if r.metric("latency_steps.max") <= LATENCY_STEPS]
     high = [r for r in runs if r.metric("latency_steps.max") > LATENCY_STEPS]
     low_tunnel = [r for r in low if r.metric("tunneling")]
     high_tunnel = [r for r in high if r.metric("tunneling")]
-    measured = (f"latency <= {LATENCY_STEPS}: {len(low_tunnel)} of {plural(len(low), 'run')} tunnel; "
-                f"latency > {LATENCY_STEPS}: {len(high_tunnel)} of {plural(len(high), 'run')} tunnel")
+    measured = (f"max latency <= {LATENCY_STEPS} steps: {len(low_tunnel)} of {plural(len(low), 'run')} tunnel; "
+                f"max latency > {LATENCY_STEPS} steps: {len(high_tunnel)} of {plural(len(high), 'run')} tunnel")
     safe = [r.metric("latency_steps.max") for r in runs if not r.metric("tunneling")]
     if high_tunnel:
-        measured += (f"; no pass-through up to {max(safe, default=0):.0f} steps, pass-through from "
-                     f"{min(r.metric('latency_steps.max') for r in high_tunnel):.0f} steps")
+        measured += (f"; no pass-through up to a max latency of {max(safe, default=0):.0f} steps, pass-through "
+                     f"from {min(r.metric('latency_steps.max') for r in high_tunnel):.0f} steps")
     if low_tunnel:
         verdict = FAILS
     elif low and high_tunnel:
@@ -280,14 +297,18 @@ CLAIMS = [
           figure="overshoot", select=Select(methods=("interruptible",), budget_kinds=("wall_ms",),
                                           measured=("overshoot_pct.p99",)),
           metrics=("overshoot_pct.p99", "overshoot_cpu_pct.p99", "timing.verdict"), rule=worst_overshoot,
-          ours=("judged on wall time on quiet runs only (summary.timing): a noisy run's is inconclusive",)),
+          ours=("the statistic: each run's p99 of per-step overshoot, the worst run deciding (the paper names "
+                "none)",
+                "judged on wall time on quiet runs only (summary.timing): a noisy run's is inconclusive")),
     Claim(id="speedup",
           text="Interruptible handling saves up to two thirds of the collision handling time",
           paper=f"up to {SPEEDUP:g}x (120 -> 40 ms)",
           figure="speedup", select=Select(methods=("interruptible",), budget_kinds=("wall_ms",),
                                         measured=("handling_ms.p50",)),
-          metrics=("handling_ms.p50",), rule=best_speedup,
-          ours=(f"SPEEDUP_MIN = {SPEEDUP_MIN:g}: counts as reproduced from {SPEEDUP_MIN:g}x",)),
+          metrics=("handling_ms.p50", "handling_ms.p99"), rule=best_speedup,
+          ours=(f"SPEEDUP_MIN = {SPEEDUP_MIN:g}: counts as reproduced from {SPEEDUP_MIN:g}x",
+                "the statistic: full's median (p50) per-step handling time over the run's (the paper names none); "
+                "the p99 ratio is shown beside it, not judged")),
     Claim(id="stack_rests",
           text="A stack rests plausibly under the budget: stable, standing, no pass-through, plausible jitter",
           paper="plausible resting contact",
@@ -299,14 +320,14 @@ CLAIMS = [
           rule=rests_plausibly, per=("method", "response"),
           ours=(f"STANDING_FRACTION = {STANDING_FRACTION:g}: standing while the top centre keeps that share of "
                 "its height",
-                f"JITTER_FACTOR = {JITTER_FACTOR:g}: plausible jitter is at most that times full's (same setup)",
+                f"JITTER_FACTOR = {JITTER_FACTOR:g}: plausible jitter (RMS) is at most that times full's (same setup)",
                 "interruptible_no_extrapolation and interruptible_tracked are our variants, judged alike")),
     Claim(id="every_2nd_jitters",
           text=f"Handling collisions only every n-th step (n = {EVERY_NTH_N}) makes resting contact jitter",
           paper="resting contact jitters",
           figure="jitter", select=Select(methods=("every_nth",), settings={"n": EVERY_NTH_N}, measured=("jitter",)),
           metrics=("jitter",), rule=jitters, per=("response",),
-          ours=(f"JITTER_FACTOR = {JITTER_FACTOR:g}: jitter is more than that times full's (same setup)",)),
+          ours=(f"JITTER_FACTOR = {JITTER_FACTOR:g}: jitter (RMS) is more than that times full's (same setup)",)),
     Claim(id="extrapolation_steadies",
           text="Force extrapolation avoids jitter: interruptible jitters less than interruptible_no_extrapolation "
                "at the same budget",
@@ -314,7 +335,7 @@ CLAIMS = [
           figure="jitter", select=Select(methods=("interruptible",), budget_kinds=("wall_ms", "work"),
                                        measured=("jitter",)),
           metrics=("jitter",), rule=extrapolation_steadies, per=("response",),
-          ours=("the comparison: the paper gives no ablation; lower jitter than the same run without "
+          ours=("the comparison: the paper gives no ablation; lower jitter (RMS) than the same run without "
                 "extrapolation counts",)),
     Claim(id="latency",
           text=f"A fast heavy object: latency up to {LATENCY_STEPS} steps keeps it from passing through; "

@@ -49,16 +49,18 @@ def counterpart(run, runs, method):
                          and r.budget_kind == run.budget_kind and r.budget_label == run.budget_label])
 
 
-def speedup(run, ref):
-    """Median handling time of the reference over the run's, or None when either is missing."""
+def speedup(run, ref, stat="p50"):
+    """The reference's handling time over the run's, both as the statistic `stat` of summary.handling_ms
+    (p50: the median, what a budget "full/K" divides; p99: what a deadline sees), or None when either
+    is missing or 0."""
     if ref is None:
         return None
-    full, mine = ref.metric("handling_ms.p50"), run.metric("handling_ms.p50")
+    full, mine = ref.metric(f"handling_ms.{stat}"), run.metric(f"handling_ms.{stat}")
     return full / mine if full and mine else None
 
 
 def budgeted_with_reference(runs, all_runs):
-    """[(run, reference, speed-up)] for every budgeted run in runs that has a reference."""
+    """[(run, reference, median speed-up)] for every budgeted run in runs that has a reference."""
     rows = []
     for run in runs:
         if run.budget_kind == "none":

@@ -46,11 +46,11 @@ def fmt(value):
     return "" if value is None else f"{value:.4g}"
 
 
-RUN_COLUMNS = (("handling p50 (ms)", "handling_ms.p50"), ("recall min", "recall_min"),
-               ("max depth (m)", "max_depth"), ("jitter (m/s)", "jitter"),
-               ("settled max speed p50 (m/s)", "settled_max_speed_median"),
+RUN_COLUMNS = (("handling p50 (ms)", "handling_ms.p50"), ("handling p99 (ms)", "handling_ms.p99"),
+               ("recall mean", "recall_mean"), ("recall min", "recall_min"), ("max depth (m)", "max_depth"),
+               ("jitter RMS (m/s)", "jitter"), ("settled max speed p50 (m/s)", "settled_max_speed_median"),
                ("settled kinetic energy mean (J)", "settled_kinetic_energy.mean"),
-               ("probe force change (N/step)", "probe_force_change_rms"), ("tunnelling", "tunneling"))
+               ("probe force change RMS (N/step)", "probe_force_change_rms"), ("tunnelling", "tunneling"))
 
 
 def document(results, sections, outcomes, notes):

@@ -48,5 +48,6 @@ def draw(ctx, runs):
     for ax in list(axes.flat)[len(panels):]:
         ax.set_visible(False)
     return ctx.save(fig, FILE, TITLE,
-                    "Collision handling time per step in each scene, one run per method: under a wall-clock budget "
-                    "(dashed) where there is one, else without a budget.", sources)
+                    "Collision handling time of every step (the steps.csv series, no statistic) in each scene, one "
+                    "run per method: under a wall-clock budget (dashed) where there is one, else without a budget.",
+                    sources)

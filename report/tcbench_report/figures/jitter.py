@@ -61,8 +61,8 @@ def draw(ctx, runs):
             bars_legend(ax_row[len(row) - 1], colours, runs)
     scenes = ", ".join(sorted({r.scene for r in runs}))
     return ctx.save(fig, FILE, f"{TITLE}: {scenes}",
-                    "Each run's jitter as its scene measures it (a stack: RMS vertical velocity of the objects over "
-                    "the second half of the run), one panel per contact response (implicit or explicit penalty "
+                    "Each run's jitter (summary.jitter: the RMS of the objects' vertical velocity over the second "
+                    "half of the run), one panel per contact response (implicit or explicit penalty "
                     "contact; a run recorded before the option is explicit), bars grouped by budget from the "
                     "largest to the smallest and coloured by method; the black mark across a bar is full's jitter "
                     "in the same setup. Hatched in red: the run is not ok; 'collapsed' where the top object's "

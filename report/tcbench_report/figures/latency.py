@@ -42,5 +42,6 @@ def draw(ctx, runs):
     ax.legend(fontsize=7)
     scenes = ", ".join(sorted({r.scene for r in runs}))
     return ctx.save(fig, FILE, f"{TITLE}: {scenes}",
-                    "Steps from a vertex's first true penetration to its first depth-based force, and whether the "
-                    "objects passed through each other.", runs)
+                    "Steps from a vertex's first true penetration to its first depth-based force, over the "
+                    "penetration episodes of each run: the bar is the longest (max), the dot the mean "
+                    "(summary latency_steps); and whether the objects passed through each other.", runs)

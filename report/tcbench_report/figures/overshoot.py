@@ -42,8 +42,9 @@ def draw(ctx, runs):
     axes[0].set(ylabel="handling time over budget (%, linear below 10)")
     noisy = sum(r.timing == "noisy" for r in runs)
     return ctx.save(fig, FILE, TITLE,
-                    "How far handling time overshoots the wall-clock budget, percentiles over all steps of each run: "
-                    "on the wall clock (left) and in the handling thread's CPU time (right). Runs marked [noisy] "
+                    "How far handling time overshoots the wall-clock budget: the p50 (median), p99 and max over all "
+                    "steps of each run (summary overshoot_pct, overshoot_cpu_pct), on the wall clock (left) and "
+                    "in the handling thread's CPU time (right). Runs marked [noisy] "
                     f"(red; {noisy} of {len(runs)}) ran on a busy machine (summary.timing): their wall overshoot is "
                     "partly the scheduler's.",
                     runs)

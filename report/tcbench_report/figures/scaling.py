@@ -39,7 +39,8 @@ def draw(ctx, runs):
         ax.plot([p[0] for p in pts], [p[1] for p in pts], "o-", label=f"{legend} p50")
         if all(p[2] is not None for p in pts):
             ax.plot([p[0] for p in pts], [p[2] for p in pts], "x:", label=f"{legend} p99")
-    ax.set(xscale="log", yscale="log", xlabel="tetrahedra (dynamic objects)", ylabel="handling time (ms)")
+    ax.set(xscale="log", yscale="log", xlabel="tetrahedra (dynamic objects)",
+           ylabel="handling time per step (ms)")
     # Tick the sizes that were run: a log axis over less than a decade labels its minor ticks on top of each other.
     sizes = sorted({r.dynamic_tets() for rs in lines.values() for r in rs})
     ax.xaxis.set_minor_formatter(NullFormatter())
@@ -47,5 +48,5 @@ def draw(ctx, runs):
     ax.legend(fontsize=7)
     scenes = ", ".join(sorted({r.scene for rs in lines.values() for r in rs}))
     return ctx.save(fig, FILE, f"{TITLE}: {scenes}",
-                    "Collision handling time per step (median and 99th percentile) against the number of "
-                    "tetrahedra of the dynamic objects.", [r for rs in lines.values() for r in rs])
+                    "Collision handling time per step, its median (p50, solid) and p99 (dotted), against the "
+                    "number of tetrahedra of the dynamic objects.", [r for rs in lines.values() for r in rs])
