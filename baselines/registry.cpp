@@ -8,17 +8,49 @@
 
 namespace tcb {
 
+namespace {
+
+// Ours, on every interruptible method: finer tasks, so a budget is met more closely.
+const SettingSpec kFineTasks{.name = "fine_tasks",
+                             .type = SettingSpec::Type::Boolean,
+                             .default_value = false,
+                             .description = "hash the tets and build the hash tables in small resumable tasks "
+                                            "instead of the paper's one task each (ours, not the paper's)"};
+
+const SettingSpec kReserveApply{.name = "reserve_apply",
+                                .type = SettingSpec::Type::Boolean,
+                                .default_value = false,
+                                .description = "under a wall-clock budget, stop the cycle early by the time applying "
+                                               "the forces took in recent steps, so the step ends within the budget "
+                                               "(ours, not the paper's)"};
+
+InterruptibleHandler::Options interruptible_options(const MethodSettings& s, std::int64_t keep_lost_cycles = 0) {
+  return {.keep_lost_cycles = keep_lost_cycles,
+          .granularity = s.boolean("fine_tasks") ? TaskGranularity::fine_tasks() : TaskGranularity{},
+          .reserve_apply = s.boolean("reserve_apply")};
+}
+
+}  // namespace
+
 const std::vector<MethodInfo>& method_registry() {
   using Stale = InterruptibleHandler::Stale;
   static const std::vector<MethodInfo> registry = {
       {.name = "interruptible",
        .description = "the paper's method: the cycle under a time budget, resumed next step, forces extrapolated "
                       "meanwhile",
-       .make = [](const MethodSettings&) { return std::make_unique<InterruptibleHandler>(Stale::Extrapolate); },
+       .settings = {kFineTasks, kReserveApply},
+       .make =
+           [](const MethodSettings& s) {
+             return std::make_unique<InterruptibleHandler>(Stale::Extrapolate, interruptible_options(s));
+           },
        .uses_budget = true},
       {.name = "interruptible_no_extrapolation",
        .description = "ablation: interruptible without force extrapolation",
-       .make = [](const MethodSettings&) { return std::make_unique<InterruptibleHandler>(Stale::Nothing); },
+       .settings = {kFineTasks, kReserveApply},
+       .make =
+           [](const MethodSettings& s) {
+             return std::make_unique<InterruptibleHandler>(Stale::Nothing, interruptible_options(s));
+           },
        .uses_budget = true},
       {.name = "interruptible_tracked",
        .description = "variant (not in the paper): interruptible, but contacts known from earlier steps get the "
@@ -31,10 +63,13 @@ const std::vector<MethodInfo>& method_registry() {
                      .max = 1e6,
                      .description = "a tracked contact that a completed cycle no longer finds stays (inert while its "
                                     "tracked depth is <= 0) for this many more cycles; 0: forgotten at once, like "
-                                    "the paper's history"}},
+                                    "the paper's history"},
+                    kFineTasks,
+                    kReserveApply},
        .make =
            [](const MethodSettings& s) {
-             return std::make_unique<InterruptibleHandler>(Stale::Track, s.integer("keep_lost_cycles"));
+             return std::make_unique<InterruptibleHandler>(Stale::Track,
+                                                           interruptible_options(s, s.integer("keep_lost_cycles")));
            },
        .uses_budget = true},
       {.name = "full",

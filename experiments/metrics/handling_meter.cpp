@@ -1,5 +1,7 @@
 #include "experiments/metrics/handling_meter.hpp"
 
+#include <algorithm>
+
 #include "experiments/metrics/distribution.hpp"
 
 namespace tcb {
@@ -17,24 +19,32 @@ void HandlingMeter::on_step(StepContext& ctx) {
   ctx.row.set("handling_switches", ctx.handling_switches);
   m_handling_ms.push_back(ctx.handling_ms);
   m_handling_cpu_ms.push_back(ctx.handling_cpu_ms);
+  if (ctx.budget) {
+    m_max_task_work = std::max(m_max_task_work, ctx.budget->max_task_work());
+    if (m_budget.kind == BudgetKind::WallMs) m_max_task_us.push_back(1000.0 * ctx.budget->max_poll_gap_ms());
+  }
   if (m_budget.kind != BudgetKind::WallMs) return;
   ctx.row.set("budget_ms", m_budget.value);
   if (m_budget.value > 0.0) {
     m_overshoot_pct.push_back(100.0 * (ctx.handling_ms - m_budget.value) / m_budget.value);
     m_overshoot_cpu_pct.push_back(100.0 * (ctx.handling_cpu_ms - m_budget.value) / m_budget.value);
+    m_overshoot_us.push_back(1000.0 * (ctx.handling_ms - m_budget.value));
   }
 }
 
 void HandlingMeter::summarize(Json& summary) const {
   summary["handling_ms"] = distribution_json(m_handling_ms);
   summary["handling_cpu_ms"] = distribution_json(m_handling_cpu_ms);
-  const auto overshoot = [](const std::vector<double>& pct) {
-    if (pct.empty()) return Json(nullptr);  // no (positive) wall budget
-    const Distribution o = tcb::summarize(pct);
+  const auto tail = [](const std::vector<double>& values) {  // {p50, p99, max}
+    if (values.empty()) return Json(nullptr);  // no (positive) wall budget
+    const Distribution o = tcb::summarize(values);
     return Json{{"p50", o.p50}, {"p99", o.p99}, {"max", o.max}};
   };
-  summary["overshoot_pct"] = overshoot(m_overshoot_pct);
-  summary["overshoot_cpu_pct"] = overshoot(m_overshoot_cpu_pct);
+  summary["overshoot_pct"] = tail(m_overshoot_pct);
+  summary["overshoot_cpu_pct"] = tail(m_overshoot_cpu_pct);
+  summary["overshoot_us"] = tail(m_overshoot_us);
+  summary["max_task_work"] = m_max_task_work;
+  summary["max_task_us"] = tail(m_max_task_us);
 }
 
 }  // namespace tcb

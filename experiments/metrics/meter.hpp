@@ -65,6 +65,7 @@ struct StepContext {
   double handling_ms = 0.0;
   double handling_cpu_ms = 0.0;          ///< the handling thread's CPU time over the same interval
   std::int64_t handling_switches = 0;    ///< its involuntary context switches during handling
+  const Budget* budget = nullptr;        ///< the step's budget after handling (its granularity figures)
   double dynamics_ms = 0.0;  ///< set before on_step()
   StepRow& row;
   /// Oracle frames computed this step (before_dynamics), for the meters that

@@ -22,7 +22,9 @@ TimingVerdict timing_verdict(const TimingEvidence& e) {
     v.reasons.push_back(fmt::format("other processes kept {:.2f} CPUs busy on average ({} CPUs)", *e.other_busy_cpus,
                                     e.cpus));
   if (e.loadavg_start && *e.loadavg_start > e.cpus - 0.5)
-    v.reasons.push_back(fmt::format("load average {:.2f} at the start on {} CPUs", *e.loadavg_start, e.cpus));
+    v.notes.push_back(fmt::format("load average {:.2f} at the start on {} CPUs (a lagging hint: it counts earlier "
+                                  "runs too)",
+                                  *e.loadavg_start, e.cpus));
   if (!e.other_busy_cpus) v.notes.push_back("/proc/stat unreadable: the other processes' load is unknown");
   if (!e.governor) v.notes.push_back("CPU frequency governor not readable (no cpufreq here)");
   else if (*e.governor != "performance")

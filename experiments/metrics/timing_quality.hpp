@@ -13,10 +13,11 @@
 /// The run is noisy when any of these holds (each one a reason, in words):
 ///   - more than 1 % of its steps were preempted;
 ///   - the other processes kept more than a quarter of the CPUs it did not
-///     use busy on average (other_busy_cpus > 0.25 max(1, cpus - 1));
-///   - the 1-minute load average at the start exceeded cpus - 0.5.
-/// Notes, which do not make it noisy: the CPU governor is not "performance"
-/// or cannot be read, the handling thread was not pinned.
+///     use busy on average (other_busy_cpus > 0.25 max(1, cpus - 1)).
+/// Notes, which do not make it noisy: the 1-minute load average at the start
+/// when it exceeds cpus - 0.5 (it lags by a minute and counts a sweep's own
+/// previous runs, so it is a hint, not evidence), the CPU governor is not
+/// "performance" or cannot be read, the handling thread was not pinned.
 
 #include <cstdint>
 #include <optional>

@@ -108,6 +108,7 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
                     .handling_ms = handling_ms,
                     .handling_cpu_ms = cpu_after.cpu_ms - cpu_before.cpu_ms,
                     .handling_switches = cpu_after.involuntary_switches - cpu_before.involuntary_switches,
+                    .budget = &budget,
                     .row = row};
     for (const auto& m : meters) m->before_dynamics(ctx);
     const auto t_dynamics = Clock::now();

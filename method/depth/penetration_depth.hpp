@@ -40,6 +40,9 @@ class SurfaceHash {
   std::uint64_t hash_triangle(const World& world, std::int32_t body, std::int32_t triangle);
   /// After the last triangle: makes the hash queryable.
   void build() { m_hash.build(); }
+  /// build() in pieces (SpatialHash::begin_build, build_some).
+  void begin_build() { m_hash.begin_build(); }
+  bool build_some(std::size_t max_visits) { return m_hash.build_some(max_visits); }
 
   /// Calls f(triangle) for each distinct triangle of `body` hashed in the cells of [lo, hi].
   template <typename F>

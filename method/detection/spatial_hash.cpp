@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -79,25 +80,47 @@ std::size_t SpatialHash::insert_box(const Vec3& lo, const Vec3& hi, std::uint32_
 }
 
 void SpatialHash::build() {
+  begin_build();
+  build_some(std::numeric_limits<std::size_t>::max());
+}
+
+void SpatialHash::begin_build() {
+  m_build_pass = 0;
+  m_build_cursor = 0;
+  m_build_next = 0;
+}
+
+bool SpatialHash::build_some(std::size_t max_visits) {
   // Counting sort by bucket over the entries only: a bucket's start is given
   // when its first entry is met (m_start doubles as the fill cursor, so each
-  // start is stored as the end of its range and rewound afterwards).
-  std::uint32_t next = 0;
-  for (const Entry& e : m_entries) {
-    if (m_count[e.bucket] == 0) continue;
-    if (m_stamp[e.bucket] == m_epoch) {  // first time met in this pass: allocate
-      m_start[e.bucket] = next;
-      next += m_count[e.bucket];
-      m_stamp[e.bucket] = m_epoch - 1;  // mark allocated; restored below
+  // start is stored as the end of its range and rewound afterwards). Three
+  // passes; the cursor says where the current one stands.
+  const std::size_t n = m_entries.size();
+  while (m_build_pass < 3) {
+    const std::size_t end = n - m_build_cursor > max_visits ? m_build_cursor + max_visits : n;
+    max_visits -= end - m_build_cursor;
+    for (std::size_t i = m_build_cursor; i < end; ++i) {
+      const Entry& e = m_entries[i];
+      if (m_build_pass == 0) {
+        if (m_count[e.bucket] == 0 || m_stamp[e.bucket] != m_epoch) continue;
+        m_start[e.bucket] = m_build_next;  // first time met in this pass: allocate
+        m_build_next += m_count[e.bucket];
+        m_stamp[e.bucket] = m_epoch - 1;  // mark allocated; restored in pass 2
+      } else if (m_build_pass == 1) {
+        m_sorted[m_start[e.bucket]++] = e.item;
+      } else if (m_stamp[e.bucket] != m_epoch) {
+        m_stamp[e.bucket] = m_epoch;
+        m_start[e.bucket] -= m_count[e.bucket];  // rewind to the range's start
+      }
     }
+    m_build_cursor = end;
+    if (m_build_cursor < n) return false;  // out of visits mid-pass
+    ++m_build_pass;
+    m_build_cursor = 0;
+    if (m_build_pass == 1) m_sorted.resize(n);
+    if (max_visits == 0 && m_build_pass < 3) return false;
   }
-  m_sorted.resize(m_entries.size());
-  for (const Entry& e : m_entries) m_sorted[m_start[e.bucket]++] = e.item;
-  for (const Entry& e : m_entries) {
-    if (m_stamp[e.bucket] == m_epoch) continue;
-    m_stamp[e.bucket] = m_epoch;
-    m_start[e.bucket] -= m_count[e.bucket];  // rewind to the range's start
-  }
+  return true;
 }
 
 std::size_t SpatialHash::occupied_buckets() const {

@@ -62,6 +62,13 @@ class SpatialHash {
   std::size_t insert_box(const Vec3& lo, const Vec3& hi, std::uint32_t item);
   /// Makes the inserted entries queryable (see file comment).
   void build();
+  /// build() in pieces, for interruptible callers: begin_build(), then
+  /// build_some() until it returns true. Each call visits at most
+  /// `max_visits` entries (the sort makes three passes over them); the
+  /// result is exactly build()'s. Nothing may be inserted or queried until
+  /// it is done.
+  void begin_build();
+  bool build_some(std::size_t max_visits);
 
   /// Calls f(item) for every entry of the bucket of point p's cell.
   template <typename F>
@@ -112,6 +119,9 @@ class SpatialHash {
   std::uint32_t m_epoch = 1;
   std::vector<Entry> m_entries;   // in insertion order
   std::vector<std::uint32_t> m_sorted;  // items grouped by bucket (after build)
+  int m_build_pass = 3;                 // 0..2 while a build is under way, 3 when built
+  std::size_t m_build_cursor = 0;
+  std::uint32_t m_build_next = 0;
 };
 
 }  // namespace tcb

@@ -1,6 +1,7 @@
 #include "method/detection/tet_hash_detection.hpp"
 
 #include <algorithm>
+#include <limits>
 
 #include "method/geometry/perturbed_predicates.hpp"
 #include "method/handler/work_units.hpp"
@@ -41,13 +42,34 @@ TetHashDetector::TetHashDetector(const World& world, const DetectionSettings& se
 }
 
 std::uint64_t TetHashDetector::hash_tets(const World& world, const CollisionPairs& pairs) {
+  begin_hash();
+  bool done = false;
+  const std::uint64_t work = hash_some_tets(world, pairs, std::numeric_limits<std::size_t>::max(), done);
+  m_hash.build();
+  return work;
+}
+
+void TetHashDetector::begin_hash() {
   m_hash.begin_epoch();
+  m_hash_body = 0;
+  m_hash_tet = 0;
+}
+
+std::uint64_t TetHashDetector::hash_some_tets(const World& world, const CollisionPairs& pairs, std::size_t max_tets,
+                                              bool& done) {
   std::uint64_t work = 0;
-  for (std::size_t b = 0; b < world.bodies.size(); ++b) {
-    if (!pairs.has_partner(b)) continue;
-    const Body& body = world.bodies[b];
+  std::size_t visited = 0;
+  for (; m_hash_body < world.bodies.size(); ++m_hash_body, m_hash_tet = 0) {
+    if (!pairs.has_partner(m_hash_body)) continue;
+    const Body& body = world.bodies[m_hash_body];
     const std::vector<char>& degenerate = body.mesh->is_degenerate;
-    for (std::size_t t = 0; t < body.mesh->tet_count(); ++t) {
+    for (; m_hash_tet < body.mesh->tet_count(); ++m_hash_tet) {
+      if (visited == max_tets) {
+        done = false;
+        return work;
+      }
+      ++visited;
+      const std::size_t t = m_hash_tet;
       if (degenerate[t]) continue;
       const Tet& tet = body.mesh->tets[t];
       Vec3 lo = body.x_m[tet[0]], hi = lo;
@@ -55,13 +77,13 @@ std::uint64_t TetHashDetector::hash_tets(const World& world, const CollisionPair
         lo = lo.cwiseMin(body.x_m[tet[k]]);
         hi = hi.cwiseMax(body.x_m[tet[k]]);
       }
-      const std::uint32_t id = m_body_tet_offset[b] + static_cast<std::uint32_t>(t);
+      const std::uint32_t id = m_body_tet_offset[m_hash_body] + static_cast<std::uint32_t>(t);
       m_tet_lo[id] = lo;
       m_tet_hi[id] = hi;
       work += work::kCellInsert * m_hash.insert_box(lo, hi, id);
     }
   }
-  m_hash.build();
+  done = true;
   return work;
 }
 

@@ -2,8 +2,13 @@
 /// Point-in-tet detection through a spatial hash of the tets (Teschner et al.
 /// 2003, in the paper's order, which makes one point query the atomic task):
 ///   1. hash_tets(): every non-degenerate tet of every body that has a
-///      collision partner goes into all cells its AABB covers (one task, not
-///      interruptible; the AABBs are kept for step 2);
+///      collision partner goes into all cells its AABB covers (the paper: one
+///      task, not interruptible; the AABBs are kept for step 2). Resumable in
+///      pieces: begin_hash(), hash_some_tets() until done, then the table's
+///      begin_build()/build_some() (hash()); the result is hash_tets()'s
+///      whenever positions do not change in between. Tets hashed in an earlier
+///      step keep that step's AABB, as the whole hash does in the paper's
+///      schedule once the cycle spans steps;
 ///   2. query_point(): one vertex is hashed; for each tet in its bucket: skip
 ///      pairs that are not enabled and tets incident to the vertex
 ///      (self-collision), reject by the stored AABB, then the exact perturbed
@@ -32,6 +37,13 @@ class TetHashDetector {
 
   /// Stage 1: hashes all tets at the current positions; returns work units.
   std::uint64_t hash_tets(const World& world, const CollisionPairs& pairs);
+  /// Stage 1 in pieces: begin_hash() empties the table; each hash_some_tets()
+  /// hashes the next `max_tets` tets (in hash_tets()'s order) at the current
+  /// positions, returns their work units, and sets `done` after the last;
+  /// then build the table (mutable_hash().begin_build(), build_some()).
+  void begin_hash();
+  std::uint64_t hash_some_tets(const World& world, const CollisionPairs& pairs, std::size_t max_tets, bool& done);
+  SpatialHash& mutable_hash() { return m_hash; }
   /// Stage 2 for one vertex; adds its work units to `work`.
   std::optional<Contact> query_point(const World& world, const CollisionPairs& pairs, std::int32_t object,
                                      std::int32_t vertex, std::uint64_t& work);
@@ -45,6 +57,7 @@ class TetHashDetector {
   std::vector<Vec3> m_tet_lo, m_tet_hi;               // AABBs at hashing time
   std::vector<std::uint32_t> m_tested;                // per global tet: last query that tested it
   std::uint32_t m_query = 0;
+  std::size_t m_hash_body = 0, m_hash_tet = 0;        // hash_some_tets()'s cursor
 };
 
 /// The O(points x tets) reference: tests the vertex against every tet of every

@@ -9,7 +9,12 @@
 /// expired() is true once the spent wall time or work reaches the budget; a
 /// budget of 0 is expired from the start (the handler still hashes the tets of
 /// a new cycle, which is not interruptible).
+/// The granularity the budget saw: max_task_work() is the largest single
+/// charge (one task's work; a whole cycle for methods that charge it at
+/// once), and for wall budgets max_poll_gap_ms() the longest interval between
+/// two polls of expired(), the first measured from the budget's creation.
 
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <functional>
@@ -32,7 +37,7 @@ class Budget {
   static Budget unlimited() { return Budget(Kind::None, 0.0, {}); }
   static Budget wall_ms(double budget_ms, ClockMs clock = steady_clock_ms()) {
     Budget b(Kind::WallMs, budget_ms, std::move(clock));
-    b.m_start_ms = b.m_clock();
+    b.m_start_ms = b.m_last_poll_ms = b.m_clock();
     return b;
   }
   static Budget work_units(std::uint64_t units) { return Budget(Kind::Work, static_cast<double>(units), {}); }
@@ -41,11 +46,30 @@ class Budget {
     switch (m_kind) {
       case Kind::None: return false;
       case Kind::Work: return static_cast<double>(m_spent) >= m_limit;
-      case Kind::WallMs: return m_clock() - m_start_ms >= m_limit;
+      case Kind::WallMs: {
+        const double now = m_clock();
+        m_max_gap_ms = std::max(m_max_gap_ms, now - m_last_poll_ms);
+        m_last_poll_ms = now;
+        return now - m_start_ms >= m_limit;
+      }
     }
     return false;
   }
-  void charge(std::uint64_t units) { m_spent += units; }
+  void charge(std::uint64_t units) {
+    m_spent += units;
+    m_max_charge = std::max(m_max_charge, units);
+  }
+  std::uint64_t max_task_work() const { return m_max_charge; }
+  /// Wall budgets: milliseconds since the budget's creation (0 for other
+  /// kinds). Not a poll: it does not count in max_poll_gap_ms().
+  double elapsed_ms() const { return m_kind == Kind::WallMs ? m_clock() - m_start_ms : 0.0; }
+  /// Wall budgets: lowers the limit by `ms` (>= 0), for work the caller
+  /// still has to do after the last poll. No effect on other kinds.
+  void reserve_ms(double ms) {
+    if (m_kind == Kind::WallMs && ms > 0.0) m_limit -= ms;
+  }
+  /// Wall budgets only (0 before the first poll and for other kinds).
+  double max_poll_gap_ms() const { return m_max_gap_ms; }
   std::uint64_t spent() const { return m_spent; }
   Kind kind() const { return m_kind; }
   double limit() const { return m_limit; }
@@ -56,7 +80,8 @@ class Budget {
   double m_limit;
   ClockMs m_clock;
   double m_start_ms = 0.0;
-  std::uint64_t m_spent = 0;
+  std::uint64_t m_spent = 0, m_max_charge = 0;
+  mutable double m_last_poll_ms = 0.0, m_max_gap_ms = 0.0;
 };
 
 /// The number grammar of budget labels: a plain decimal >= 0 (digits and at

@@ -6,9 +6,11 @@
 
 namespace tcb {
 
-CollisionCycle::CollisionCycle(const World& world, CollisionSettings settings, DetectionMode mode)
+CollisionCycle::CollisionCycle(const World& world, CollisionSettings settings, DetectionMode mode,
+                               TaskGranularity granularity)
     : m_settings(std::move(settings)),
       m_mode(mode),
+      m_granularity(granularity),
       m_pairs(world),
       m_detector(world, m_settings.detection),
       m_surface(world, m_settings.detection.cell_size_m, m_settings.detection.hash) {
@@ -29,6 +31,7 @@ void CollisionCycle::begin(const World& world) {
   ++m_number;
   m_tasks = 0;
   enter(m_mode == DetectionMode::SpatialHash ? Stage::HashTets : Stage::QueryPoints, world);
+  if (m_stage == Stage::HashTets && m_granularity.fine()) m_detector.begin_hash();
 }
 
 void CollisionCycle::add_contact(const Contact& c) {
@@ -40,22 +43,53 @@ void CollisionCycle::enter(Stage stage, const World& world) {
   m_stage = stage;
   m_cursor = 0;
   if (stage == Stage::HashSurface) {
+    // The bodies some point is inside, ascending; their triangles are walked
+    // by a cursor (m_surface_body, m_cursor), one a task.
     std::vector<char> needed(world.bodies.size(), 0);
     for (const Contact& c : m_contacts) needed[c.other] = 1;
-    m_triangles.clear();
+    m_surface_bodies.clear();
     for (std::size_t b = 0; b < world.bodies.size(); ++b)
-      if (needed[b])
-        for (std::size_t t = 0; t < world.bodies[b].mesh->surface.size(); ++t)
-          m_triangles.emplace_back(static_cast<std::int32_t>(b), static_cast<std::int32_t>(t));
+      if (needed[b] && !world.bodies[b].mesh->surface.empty()) m_surface_bodies.push_back(static_cast<std::int32_t>(b));
+    m_surface_body = 0;
     m_surface.begin_epoch();
   } else if (stage == Stage::Propagate) {
     m_layer = 0;
-    build_next_layer(world);
+    if (m_granularity.fine()) start_layer_scan();  // stage BuildLayer
+    else build_next_layer(world);
   }
 }
 
 // The next layer: contacts without depth next to a contact of the layer just
 // finished (or, for layer 1, next to any border point).
+void CollisionCycle::start_layer_scan() {
+  ++m_layer;
+  ++m_layer_scan;
+  m_layer_mark.resize(m_contacts.size(), 0);
+  m_layer_items.clear();
+  m_scan_cursor = 0;
+  m_stage = Stage::BuildLayer;
+}
+
+// build_next_layer() in pieces: queues each new neighbour once (marked by
+// this scan) in the order met. True when the scan is complete.
+bool CollisionCycle::scan_layer_some(const World& world, std::size_t max_contacts) {
+  const std::size_t end = std::min(m_contacts.size(), m_scan_cursor + max_contacts);
+  for (; m_scan_cursor < end; ++m_scan_cursor) {
+    const Contact& c = m_contacts[m_scan_cursor];
+    if (c.depth_source == DepthSource::None || c.layer != m_layer - 1) continue;
+    const auto& adjacency = world.bodies[c.object].mesh->vertex_neighbours;
+    for (const std::int32_t* j = adjacency.begin(c.vertex); j != adjacency.end(c.vertex); ++j) {
+      const std::int32_t n = m_lookup[c.object][*j];
+      if (n < 0 || m_contacts[n].other != c.other || m_contacts[n].depth_source != DepthSource::None ||
+          m_layer_mark[n] == m_layer_scan)
+        continue;
+      m_layer_mark[n] = m_layer_scan;
+      m_layer_items.push_back(n);
+    }
+  }
+  return m_scan_cursor == m_contacts.size();
+}
+
 void CollisionCycle::build_next_layer(const World& world) {
   ++m_layer;
   std::vector<std::int32_t> next;
@@ -80,8 +114,20 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
     std::uint64_t work = 0;
     switch (m_stage) {
       case Stage::HashTets:
-        work = m_detector.hash_tets(world, m_pairs);
-        enter(Stage::QueryPoints, world);
+        if (!m_granularity.fine()) {
+          work = m_detector.hash_tets(world, m_pairs);
+          enter(Stage::QueryPoints, world);
+        } else {
+          bool hashed = false;
+          work = m_detector.hash_some_tets(world, m_pairs, m_granularity.tets_per_task, hashed);
+          if (hashed) {
+            m_detector.mutable_hash().begin_build();
+            enter(Stage::BuildTetHash, world);
+          }
+        }
+        break;
+      case Stage::BuildTetHash:
+        if (m_detector.mutable_hash().build_some(m_granularity.build_visits_per_task)) enter(Stage::QueryPoints, world);
         break;
       case Stage::QueryPoints:
         if (m_cursor < m_queries.size()) {
@@ -91,14 +137,26 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
         if (m_cursor == m_queries.size()) enter(Stage::HashSurface, world);
         break;
       case Stage::HashSurface:
-        if (m_cursor < m_triangles.size()) {
-          const auto [body, triangle] = m_triangles[m_cursor++];
-          work = m_surface.hash_triangle(world, body, triangle);
+        if (m_surface_body < m_surface_bodies.size()) {
+          const std::int32_t body = m_surface_bodies[m_surface_body];
+          work = m_surface.hash_triangle(world, body, static_cast<std::int32_t>(m_cursor++));
+          if (m_cursor == world.bodies[body].mesh->surface.size()) {
+            ++m_surface_body;
+            m_cursor = 0;
+          }
         }
-        if (m_cursor == m_triangles.size()) {
-          m_surface.build();
-          enter(Stage::BorderDepth, world);
+        if (m_surface_body == m_surface_bodies.size()) {
+          if (!m_granularity.fine()) {
+            m_surface.build();
+            enter(Stage::BorderDepth, world);
+          } else {
+            m_surface.begin_build();
+            enter(Stage::BuildSurfaceHash, world);
+          }
         }
+        break;
+      case Stage::BuildSurfaceHash:
+        if (m_surface.build_some(m_granularity.build_visits_per_task)) enter(Stage::BorderDepth, world);
         break;
       case Stage::BorderDepth:
         if (m_cursor < m_contacts.size()) {
@@ -128,8 +186,22 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
           c.depth_offset_m = contact_offset_m(world, c);
         }
         if (m_cursor == m_layer_items.size()) {
+          if (m_granularity.fine()) {
+            start_layer_scan();
+            break;
+          }
           build_next_layer(world);
           if (m_layer_items.empty()) enter(Stage::Forces, world);
+        }
+        break;
+      case Stage::BuildLayer:
+        if (scan_layer_some(world, m_granularity.layer_scan_per_task)) {
+          if (m_layer_items.empty()) {
+            enter(Stage::Forces, world);
+          } else {
+            m_stage = Stage::Propagate;
+            m_cursor = 0;
+          }
         }
         break;
       case Stage::Forces:
@@ -158,7 +230,7 @@ std::optional<Contact> CollisionCycle::detect(const World& world, std::int32_t b
 }
 
 std::size_t CollisionCycle::queries_done() const {
-  if (m_stage == Stage::Idle || m_stage == Stage::HashTets) return 0;
+  if (m_stage == Stage::Idle || m_stage == Stage::HashTets || m_stage == Stage::BuildTetHash) return 0;
   return m_stage == Stage::QueryPoints ? m_cursor : m_queries.size();
 }
 

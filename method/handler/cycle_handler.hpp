@@ -15,7 +15,8 @@ namespace tcb {
 
 class CycleHandler : public CollisionHandler {
  public:
-  explicit CycleHandler(DetectionMode mode = DetectionMode::SpatialHash) : m_mode(mode) {}
+  explicit CycleHandler(DetectionMode mode = DetectionMode::SpatialHash, TaskGranularity granularity = {})
+      : m_mode(mode), m_granularity(granularity) {}
   void init(const World& world, const CollisionSettings& settings) override;
   const std::vector<Contact>& contacts() const override;
   /// The cycle (after init()), for schedules and tests.
@@ -39,6 +40,7 @@ class CycleHandler : public CollisionHandler {
 
  private:
   DetectionMode m_mode;
+  TaskGranularity m_granularity;
   std::unique_ptr<CollisionCycle> m_cycle;
 };
 

@@ -1,11 +1,17 @@
 #include "method/handler/interruptible_handler.hpp"
 
+#include <algorithm>
+#include <iterator>
+
 #include "method/response/penalty_response.hpp"
 
 namespace tcb {
 
-InterruptibleHandler::InterruptibleHandler(Stale stale, std::int64_t keep_lost_cycles)
-    : m_stale(stale), m_keep_lost_cycles(stale == Stale::Track ? keep_lost_cycles : 0) {}
+InterruptibleHandler::InterruptibleHandler(Stale stale, Options options)
+    : CycleHandler(DetectionMode::SpatialHash, options.granularity),
+      m_stale(stale),
+      m_keep_lost_cycles(stale == Stale::Track ? options.keep_lost_cycles : 0),
+      m_reserve_apply(options.reserve_apply) {}
 
 std::optional<InterruptibleHandler::StaleForce> InterruptibleHandler::stale_force(const World& world,
                                                                                   std::int32_t object,
@@ -33,15 +39,33 @@ void InterruptibleHandler::apply_stale(World& world, const StaleForce& f) const 
   else add_force_link(world, f.where, f.force_n, cycle().settings().response(f.where.object, f.where.other));
 }
 
-void InterruptibleHandler::keep_lost_contacts(const std::vector<Contact>& contacts) {
-  // A point with a tracked contact that this cycle did not find (or found
-  // without a depth) keeps it for m_keep_lost_cycles more cycles; found with
-  // a depth, its count starts again.
-  for (std::size_t b = 0; b < m_lost_cycles.size(); ++b)
-    for (std::size_t v = 0; v < m_lost_cycles[b].size(); ++v)
-      if (m_has_history[b][v] && ++m_lost_cycles[b][v] > m_keep_lost_cycles) m_has_history[b][v] = 0;
-  for (const Contact& c : contacts)
-    if (c.depth_source != DepthSource::None) m_lost_cycles[c.object][c.vertex] = 0;
+void InterruptibleHandler::remember_completed_cycle(const std::vector<Contact>& contacts,
+                                                    std::int64_t cycle_steps) {
+  // The history becomes this cycle's depth-based forces. A point it did not
+  // find (or found without a depth) loses its history, unless it is a tracked
+  // contact kept for m_keep_lost_cycles more cycles; found with a depth, its
+  // count starts again. Work is proportional to the points with a history,
+  // never to all vertices.
+  const std::vector<Point> before = std::move(m_history_points);
+  m_history_points.clear();
+  for (const auto& [b, v] : before)
+    if (m_keep_lost_cycles == 0 || ++m_lost_cycles[b][v] > m_keep_lost_cycles) m_has_history[b][v] = 0;
+  std::vector<Point> found;
+  for (const Contact& c : contacts) {
+    if (c.depth_source == DepthSource::None) continue;
+    record_depth_force(m_history[c.object][c.vertex], c, m_step, cycle_steps);
+    m_has_history[c.object][c.vertex] = 1;
+    if (m_keep_lost_cycles > 0) m_lost_cycles[c.object][c.vertex] = 0;
+    found.emplace_back(c.object, c.vertex);
+  }
+  if (!std::is_sorted(found.begin(), found.end())) std::sort(found.begin(), found.end());  // queried in order: sorted
+  std::vector<Point> kept;
+  for (const auto& [b, v] : before) {
+    if (m_has_history[b][v]) kept.emplace_back(b, v);
+    else m_history[b][v] = ForceHistory{};
+  }
+  std::merge(found.begin(), found.end(), kept.begin(), kept.end(), std::back_inserter(m_history_points));
+  m_history_points.erase(std::unique(m_history_points.begin(), m_history_points.end()), m_history_points.end());
 }
 
 void InterruptibleHandler::init(const World& world, const CollisionSettings& settings) {
@@ -57,6 +81,10 @@ void InterruptibleHandler::init(const World& world, const CollisionSettings& set
 
 StepReport InterruptibleHandler::step(World& world, Budget& budget) {
   ++m_step;
+  const bool reserve = m_reserve_apply && budget.kind() == BudgetKind::WallMs;
+  // We do not know yet whether this step completes the cycle (its bookkeeping
+  // costs more): reserve for the dearer of the two.
+  if (reserve) budget.reserve_ms(std::min(std::max(m_apply_ms_done, m_apply_ms_running), 0.5 * budget.limit()));
   if (!m_in_progress) {
     mutable_cycle().begin(world);
     m_cycle_start = m_step;
@@ -64,6 +92,7 @@ StepReport InterruptibleHandler::step(World& world, Budget& budget) {
   }
   const std::uint64_t before = budget.spent();
   const bool done = mutable_cycle().advance(world, budget);
+  const double cycle_end_ms = reserve ? budget.elapsed_ms() : 0.0;
   StepReport report;
   report.work_units = budget.spent() - before;
   report.cycle = cycle().number();
@@ -102,35 +131,28 @@ StepReport InterruptibleHandler::step(World& world, Budget& budget) {
     }
   }
   if (!done && m_stale != Stale::Nothing) {
-    // Points in contact in earlier cycles that this cycle has not reached yet.
-    for (std::size_t b = 0; b < m_history.size(); ++b)
-      for (std::size_t v = 0; v < m_history[b].size(); ++v) {
-        if (!m_has_history[b][v] || m_applied[b][v] == m_step) continue;
-        const auto object = static_cast<std::int32_t>(b), vertex = static_cast<std::int32_t>(v);
-        if (const auto f = stale_force(world, object, vertex)) {
-          apply_stale(world, *f);
-          ++report.estimated_forces;
-        }
+    // Points in contact in earlier cycles that this cycle has not reached yet
+    // (in ascending (body, vertex) order).
+    for (const auto& [object, vertex] : m_history_points) {
+      if (m_applied[object][vertex] == m_step) continue;
+      if (const auto f = stale_force(world, object, vertex)) {
+        apply_stale(world, *f);
+        ++report.estimated_forces;
       }
+    }
   }
   if (done) {
-    const std::int64_t cycle_steps = m_step - m_cycle_start + 1;
-    if (m_keep_lost_cycles > 0) keep_lost_contacts(contacts);
-    else
-      for (auto& flags : m_has_history) std::fill(flags.begin(), flags.end(), 0);
-    for (const Contact& c : contacts) {
-      if (c.depth_source == DepthSource::None) continue;
-      record_depth_force(m_history[c.object][c.vertex], c, m_step, cycle_steps);
-      m_has_history[c.object][c.vertex] = 1;
-    }
-    // Points this cycle did not find lose their history.
-    for (std::size_t b = 0; b < m_history.size(); ++b)
-      for (std::size_t v = 0; v < m_history[b].size(); ++v)
-        if (!m_has_history[b][v]) m_history[b][v] = ForceHistory{};
+    remember_completed_cycle(contacts, m_step - m_cycle_start + 1);
     m_completed.clear();
     for (const Contact& c : contacts)
       if (!c.separated) m_completed.push_back(c);
     m_in_progress = false;
+  }
+  if (reserve) {
+    // What applying took, remembered per kind of step; an old figure fades
+    // (x0.9 a step of its kind) so one slow step does not shrink the cycle for good.
+    double& recent = done ? m_apply_ms_done : m_apply_ms_running;
+    recent = std::max(budget.elapsed_ms() - cycle_end_ms, 0.9 * recent);
   }
   report.colliding_points = static_cast<std::int64_t>(m_completed.size());
   report.depth_fallback = done ? cycle().depth_fallback() : 0;

@@ -57,13 +57,27 @@
 
 namespace tcb {
 
+struct InterruptibleOptions {
+  /// Track only: how many completed cycles a tracked contact outlives the
+  /// last cycle that found its point with a depth.
+  std::int64_t keep_lost_cycles = 0;
+  /// The cycle's task granularity (collision_cycle.hpp): the paper's by
+  /// default; TaskGranularity::fine_tasks() is the setting fine_tasks.
+  TaskGranularity granularity{};
+  /// Under a wall budget, stop the cycle early by the time applying the
+  /// forces took in recent steps (ours, the setting reserve_apply): the
+  /// paper's budget covers the cycle's tasks, and the forces are applied
+  /// after the last interruption point. Capped at half the budget, so the
+  /// cycle still advances.
+  bool reserve_apply = false;
+};
+
 class InterruptibleHandler final : public CycleHandler {
  public:
   /// What a point gets while its cycle has no depth for it yet.
   enum class Stale { Extrapolate, Nothing, Track };
-  /// keep_lost_cycles (Track only): how many completed cycles a tracked
-  /// contact outlives the last cycle that found its point with a depth.
-  explicit InterruptibleHandler(Stale stale, std::int64_t keep_lost_cycles = 0);
+  using Options = InterruptibleOptions;
+  explicit InterruptibleHandler(Stale stale, Options options = {});
   void init(const World& world, const CollisionSettings& settings) override;
   StepReport step(World& world, Budget& budget) override;
   const std::vector<Contact>& contacts() const override { return m_completed; }
@@ -78,18 +92,22 @@ class InterruptibleHandler final : public CycleHandler {
   };
   std::optional<StaleForce> stale_force(const World& world, std::int32_t object, std::int32_t vertex);
   void apply_stale(World& world, const StaleForce& force) const;
-  void keep_lost_contacts(const std::vector<Contact>& contacts);
+  void remember_completed_cycle(const std::vector<Contact>& contacts, std::int64_t cycle_steps);
+  using Point = std::pair<std::int32_t, std::int32_t>;  // (body, vertex)
 
   Stale m_stale;
   bool m_in_progress = false;
   std::int64_t m_step = 0, m_cycle_start = 0;
   std::vector<std::vector<ForceHistory>> m_history;   // per body, per vertex
   std::vector<std::vector<char>> m_has_history;
+  std::vector<Point> m_history_points;                // the points with has_history, ascending
   std::vector<std::vector<Contact>> m_tracked;        // per body, per vertex (Track only): last depth contact
   std::int64_t m_keep_lost_cycles;
   std::vector<std::vector<std::int64_t>> m_lost_cycles;  // per vertex (kept contacts only): cycles not found since
   std::vector<std::vector<std::int64_t>> m_applied;   // per vertex: last step a force was decided for it
   std::vector<Contact> m_completed;
+  bool m_reserve_apply;
+  double m_apply_ms_done = 0.0, m_apply_ms_running = 0.0;  // recent apply times (reserve_apply), per step kind
 };
 
 }  // namespace tcb

@@ -219,8 +219,13 @@ TEST_CASE("without contacts between bodies implicit and explicit response are th
 }
 
 TEST_CASE("under a work budget two runs are identical apart from timings", "[run]") {
+  // The paper's task granularity, and our fine tasks (resumable hashing).
+  for (const bool fine : {false, true}) {
+  INFO("fine_tasks " << fine);
   const fs::path a = fresh_dir("work_a"), b = fresh_dir("work_b");
-  const SceneDesc scene = load_scene_file(resolve_scene("plates20", default_scene_dirs()));
+  const SceneDesc scene =
+      load_scene_file(resolve_scene("plates20", default_scene_dirs()),
+                      {std::string("method.interruptible.fine_tasks=") + (fine ? "true" : "false")});
   for (const auto& dir : {a, b}) {
     RunOptions options;
     options.method = "interruptible";
@@ -246,6 +251,10 @@ TEST_CASE("under a work budget two runs are identical apart from timings", "[run
   CHECK(run["budget"]["kind"] == "work");
   CHECK(run["budget"]["value"] == 20000);
   CHECK(run["summary"]["cycle_steps"]["max"].get<double>() > 1.0);
+  CHECK(run["settings"]["fine_tasks"] == fine);
+  // The largest charge: the paper's one hashing task, or a 16-tet piece of it.
+  CHECK((run["summary"]["max_task_work"].get<double>() > 10000.0) == !fine);
   fs::remove_all(a);
   fs::remove_all(b);
+  }
 }

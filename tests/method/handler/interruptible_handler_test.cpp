@@ -112,15 +112,19 @@ TEST_CASE("interruptible with no budget gives full's forces bit for bit, in both
     return true;
   };
   for (const ResponseMode mode : {ResponseMode::Explicit, ResponseMode::Implicit})
-  for (const char* name : {"interruptible", "interruptible_no_extrapolation", "interruptible_tracked"}) {
-    INFO(name << (mode == ResponseMode::Implicit ? " implicit" : " explicit"));
+  for (const char* name : {"interruptible", "interruptible_no_extrapolation", "interruptible_tracked"})
+  for (const bool fine : {false, true}) {  // our fine tasks and reserve too: without a budget nothing changes
+    INFO(name << (mode == ResponseMode::Implicit ? " implicit" : " explicit") << (fine ? " fine" : ""));
     test::TestScene scene = pressed_blocks();
     scene.collision.response_mode = mode;
     scene.collision.damping_n_s_per_m = 2.0;  // a damper acts even at depth 0
     World a = build_world(scene.world), b = build_world(scene.world);
     std::size_t links_seen = 0;
     auto full = make_handler("full");
-    auto interruptible = make_handler(name);
+    MethodSettings settings(find_method(name).settings);
+    settings.set("fine_tasks", fine);
+    settings.set("reserve_apply", fine);
+    auto interruptible = make_handler(name, &settings);
     full->init(a, test::settings_of(a, scene));
     interruptible->init(b, test::settings_of(b, scene));
     for (int s = 0; s < 300; ++s) {
@@ -224,7 +228,7 @@ TEST_CASE("interruptible_tracked keeps a contact its cycles lost for keep_lost_c
   // is put back and a step runs whose cycle has no depth yet (budget 0).
   const auto back_after = [&](std::int64_t keep, int lost) {
     World w = build_world(scene.world);
-    InterruptibleHandler h(InterruptibleHandler::Stale::Track, keep);
+    InterruptibleHandler h(InterruptibleHandler::Stale::Track, {.keep_lost_cycles = keep});
     h.init(w, test::settings_of(w, scene));
     Budget u = Budget::unlimited();
     REQUIRE(h.step(w, u).cycle_done);

@@ -1,0 +1,136 @@
+// The collision cycle's task granularity: the fine tasks (resumable tet
+// hashing, builds and layer scans in pieces) find exactly what the paper's one
+// hashing task finds when positions do not change, for every piece size, and
+// a ticking clock interrupts the hashing and resumes it.
+#include "method/handler/collision_cycle.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <tuple>
+
+#include "tests/method/test_worlds.hpp"
+
+using namespace tcb;
+using test::Placed;
+
+namespace {
+
+// Every field a contact's force depends on.
+using Found = std::vector<std::tuple<int, int, int, int, int, double, double, double, double>>;
+
+Found found(const CollisionCycle& cycle) {
+  Found out;
+  for (const Contact& c : cycle.contacts())
+    out.emplace_back(c.object, c.vertex, c.other, c.tet, static_cast<int>(c.depth_source), c.depth_m,
+                     c.direction.x(), c.direction.y(), c.direction.z());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// A whole cycle at fixed positions, one task a call (a work budget of 0
+// expires after every task); returns the contacts and the number of calls.
+std::pair<Found, int> cycle_in_single_tasks(const test::TestScene& scene, DetectionMode mode,
+                                            TaskGranularity granularity) {
+  World w = build_world(scene);  // never stepped: positions stay fixed
+  CollisionCycle cycle(w, test::settings_of(w, scene), mode, granularity);
+  cycle.begin(w);
+  int calls = 0;
+  for (bool done = false; !done; ++calls) {
+    Budget zero = Budget::work_units(0);
+    done = cycle.advance(w, zero);
+    REQUIRE(calls < 10000000);
+  }
+  return {found(cycle), calls};
+}
+
+std::vector<std::pair<std::string, test::TestScene>> scenes() {
+  const std::string data = TCBENCH_DATA_DIR;
+  std::vector<std::pair<std::string, test::TestScene>> s;
+  s.emplace_back("two overlapping boxes",
+                 test::scene_of({{"a", "box:size=0.2x0.2x0.2,cells=3x3x3"},
+                                 {"b", "box:size=0.2x0.2x0.2,cells=4x2x3", Vec3(0.07, 0.05, 0.03)}}));
+  s.emplace_back("plate stack, face on face",
+                 test::scene_of({{"plate", "box:size=0.3x0.02x0.3,cells=4x2x4", Vec3::Zero(), false, false, 1.0, 3}}));
+  s.emplace_back("sphere into torus", test::scene_of({{"torus", "meshes/torus_coarse.mesh"},
+                                                      {"sphere", "meshes/sphere_fine.mesh", Vec3(0.1, 0.02, 0.0),
+                                                       false, false, 0.5}},
+                                                     data));
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("fine tasks find exactly the paper's contacts and depths, and brute force's points, for every piece size",
+          "[cycle][granularity]") {
+  for (const auto& [name, scene] : scenes()) {
+    INFO(name);
+    const auto [paper, paper_calls] = cycle_in_single_tasks(scene, DetectionMode::SpatialHash, {});
+    const auto [brute, brute_calls] = cycle_in_single_tasks(scene, DetectionMode::BruteForce, {});
+    REQUIRE(!paper.empty());
+    CHECK(paper == brute);
+    for (const std::size_t tets : {std::size_t{1}, std::size_t{3}, std::size_t{16}, std::size_t{1} << 30})
+      for (const std::size_t visits : {std::size_t{1}, std::size_t{5}, std::size_t{2048}})
+        for (const std::size_t scan : {std::size_t{1}, std::size_t{7}, std::size_t{1} << 30}) {
+          INFO("tets " << tets << ", visits " << visits << ", scan " << scan);
+          const auto [fine, fine_calls] =
+              cycle_in_single_tasks(scene, DetectionMode::SpatialHash, {tets, visits, scan});
+          CHECK(fine == paper);
+          if (tets == 1) CHECK(fine_calls > paper_calls);  // the hashing really was split
+        }
+  }
+}
+
+TEST_CASE("a ticking clock interrupts the tet hashing and resumes it next step", "[cycle][granularity]") {
+  const test::TestScene scene = scenes()[0].second;
+  World world = build_world(scene);
+  const CollisionSettings settings = test::settings_of(world, scene);
+  CollisionCycle fine(world, settings, DetectionMode::SpatialHash, {4, 8, 4});
+  // The clock advances 1 ms a reading; the budget reads it once when created
+  // and once after every task, so a 3 ms budget allows exactly 3 tasks.
+  double now = 0.0;
+  const ClockMs clock = [&now] { return now += 1.0; };
+  fine.begin(world);
+  Budget first = Budget::wall_ms(3.0, clock);
+  CHECK_FALSE(fine.advance(world, first));
+  CHECK(fine.stage() == CollisionCycle::Stage::HashTets);  // 12 tets hashed so far
+  CHECK(fine.tasks_done() == 3);
+  CHECK(first.max_poll_gap_ms() == 1.0);
+  Budget second = Budget::wall_ms(3.0, clock);
+  CHECK_FALSE(fine.advance(world, second));
+  CHECK(fine.stage() == CollisionCycle::Stage::HashTets);  // resumed where it stopped, not restarted
+  CHECK(fine.tasks_done() == 6);
+  int steps = 2;
+  for (bool done = false; !done; ++steps) {
+    Budget b = Budget::wall_ms(3.0, clock);
+    done = fine.advance(world, b);
+    REQUIRE(steps < 100000);
+  }
+  CollisionCycle paper(world, settings);
+  paper.begin(world);
+  Budget unlimited = Budget::unlimited();
+  REQUIRE(paper.advance(world, unlimited));
+  CHECK(found(fine) == found(paper));
+  std::size_t tets = 0;
+  for (const Body& b : world.bodies) tets += b.mesh->tet_count();
+  CHECK(static_cast<std::size_t>(steps) >= (tets + 3) / 4 / 3);  // 4 tets a hashing task, 3 tasks a step
+}
+
+TEST_CASE("a wall budget's reserve lowers its limit; elapsed time is not a poll", "[budget]") {
+  double now = 0.0;
+  const ClockMs clock = [&now] { return now += 1.0; };
+  Budget b = Budget::wall_ms(10.0, clock);  // created at 1
+  b.reserve_ms(4.0);
+  CHECK(b.limit() == 6.0);
+  CHECK(b.elapsed_ms() == 1.0);  // read at 2
+  CHECK_FALSE(b.expired());      // 3: 2 ms spent
+  now += 3.0;
+  CHECK(b.max_poll_gap_ms() == 2.0);  // from creation (1) to the poll (3); the elapsed read did not count
+  CHECK(b.expired());                 // read at 7: 6 ms spent, the reserved limit
+  CHECK(b.max_poll_gap_ms() == 4.0);
+  Budget work = Budget::work_units(100);
+  work.reserve_ms(50.0);  // no effect on other kinds
+  CHECK(work.limit() == 100.0);
+  work.charge(7);
+  work.charge(3);
+  CHECK(work.max_task_work() == 7);
+}
