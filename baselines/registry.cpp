@@ -72,6 +72,17 @@ const std::vector<MethodInfo>& method_registry() {
                                                            interruptible_options(s, s.integer("keep_lost_cycles")));
            },
        .uses_budget = true},
+      {.name = "interruptible_prioritized",
+       .description = "variant (not in the paper; its future work): interruptible, but each cycle queries the "
+                      "fastest points first, so they get their depth and force first",
+       .settings = {kFineTasks, kReserveApply},
+       .make =
+           [](const MethodSettings& s) {
+             InterruptibleHandler::Options options = interruptible_options(s);
+             options.order = WorkOrder::FastestFirst;
+             return std::make_unique<InterruptibleHandler>(Stale::Extrapolate, options);
+           },
+       .uses_budget = true},
       {.name = "full",
        .description = "the whole collision cycle every step, never interrupted (the paper's reference)",
        .make = [](const MethodSettings&) { return std::make_unique<FullHandler>(DetectionMode::SpatialHash); }},

@@ -1,16 +1,18 @@
 #include "method/handler/collision_cycle.hpp"
 
 #include <algorithm>
+#include <tuple>
 
 #include "method/handler/work_units.hpp"
 
 namespace tcb {
 
 CollisionCycle::CollisionCycle(const World& world, CollisionSettings settings, DetectionMode mode,
-                               TaskGranularity granularity)
+                               TaskGranularity granularity, WorkOrder order)
     : m_settings(std::move(settings)),
       m_mode(mode),
       m_granularity(granularity),
+      m_order(order),
       m_pairs(world),
       m_detector(world, m_settings.detection),
       m_surface(world, m_settings.detection.cell_size_m, m_settings.detection.hash) {
@@ -30,8 +32,35 @@ void CollisionCycle::begin(const World& world) {
   m_contacts.clear();
   ++m_number;
   m_tasks = 0;
+  if (m_order == WorkOrder::FastestFirst) {
+    enter(Stage::Prioritize, world);
+    return;
+  }
   enter(m_mode == DetectionMode::SpatialHash ? Stage::HashTets : Stage::QueryPoints, world);
   if (m_stage == Stage::HashTets && m_granularity.fine()) m_detector.begin_hash();
+}
+
+void CollisionCycle::prioritize(const World& world) {
+  m_query_order.resize(m_queries.size());
+  std::vector<double> speed2(m_queries.size());
+  for (std::uint32_t i = 0; i < m_queries.size(); ++i) {
+    m_query_order[i] = i;
+    const auto [b, v] = m_queries[i];
+    speed2[i] = world.bodies[b].v_m_per_s[v].squaredNorm();
+  }
+  std::stable_sort(m_query_order.begin(), m_query_order.end(),
+                   [&](std::uint32_t a, std::uint32_t b) { return speed2[a] > speed2[b]; });
+}
+
+void CollisionCycle::restore_index_order() {
+  // Contacts back in (body, vertex) order, their lookup with them: the
+  // completed cycle looks exactly like one queried in index order.
+  std::sort(m_contacts.begin(), m_contacts.end(), [](const Contact& a, const Contact& b) {
+    return std::tie(a.object, a.vertex) < std::tie(b.object, b.vertex);
+  });
+  for (std::size_t i = 0; i < m_contacts.size(); ++i)
+    if (m_lookup[m_contacts[i].object][m_contacts[i].vertex] >= 0)
+      m_lookup[m_contacts[i].object][m_contacts[i].vertex] = static_cast<std::int32_t>(i);
 }
 
 void CollisionCycle::add_contact(const Contact& c) {
@@ -113,6 +142,12 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
   while (m_stage != Stage::Done && m_stage != Stage::Idle) {
     std::uint64_t work = 0;
     switch (m_stage) {
+      case Stage::Prioritize:
+        prioritize(world);
+        work = work::kPrioritize * m_queries.size();
+        enter(m_mode == DetectionMode::SpatialHash ? Stage::HashTets : Stage::QueryPoints, world);
+        if (m_stage == Stage::HashTets && m_granularity.fine()) m_detector.begin_hash();
+        break;
       case Stage::HashTets:
         if (!m_granularity.fine()) {
           work = m_detector.hash_tets(world, m_pairs);
@@ -131,7 +166,8 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
         break;
       case Stage::QueryPoints:
         if (m_cursor < m_queries.size()) {
-          const auto [body, vertex] = m_queries[m_cursor++];
+          const auto [body, vertex] =
+              m_queries[m_order == WorkOrder::FastestFirst ? m_query_order[m_cursor++] : m_cursor++];
           if (const auto hit = detect(world, body, vertex, work)) add_contact(*hit);
         }
         if (m_cursor == m_queries.size()) enter(Stage::HashSurface, world);
@@ -210,7 +246,10 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
           c.force_n = penalty_force(world, c, m_settings.response(c.object, c.other), m_settings.dt_s);
           work = work::kForce;
         }
-        if (m_cursor == m_contacts.size()) m_stage = Stage::Done;
+        if (m_cursor == m_contacts.size()) {
+          if (m_order == WorkOrder::FastestFirst) restore_index_order();
+          m_stage = Stage::Done;
+        }
         break;
       case Stage::Idle:
       case Stage::Done:
@@ -230,7 +269,9 @@ std::optional<Contact> CollisionCycle::detect(const World& world, std::int32_t b
 }
 
 std::size_t CollisionCycle::queries_done() const {
-  if (m_stage == Stage::Idle || m_stage == Stage::HashTets || m_stage == Stage::BuildTetHash) return 0;
+  if (m_stage == Stage::Idle || m_stage == Stage::Prioritize || m_stage == Stage::HashTets ||
+      m_stage == Stage::BuildTetHash)
+    return 0;
   return m_stage == Stage::QueryPoints ? m_cursor : m_queries.size();
 }
 

@@ -15,8 +15,9 @@ namespace tcb {
 
 class CycleHandler : public CollisionHandler {
  public:
-  explicit CycleHandler(DetectionMode mode = DetectionMode::SpatialHash, TaskGranularity granularity = {})
-      : m_mode(mode), m_granularity(granularity) {}
+  explicit CycleHandler(DetectionMode mode = DetectionMode::SpatialHash, TaskGranularity granularity = {},
+                        WorkOrder order = WorkOrder::Index)
+      : m_mode(mode), m_granularity(granularity), m_order(order) {}
   void init(const World& world, const CollisionSettings& settings) override;
   const std::vector<Contact>& contacts() const override;
   /// The cycle (after init()), for schedules and tests.
@@ -41,6 +42,7 @@ class CycleHandler : public CollisionHandler {
  private:
   DetectionMode m_mode;
   TaskGranularity m_granularity;
+  WorkOrder m_order;
   std::unique_ptr<CollisionCycle> m_cycle;
 };
 

@@ -64,6 +64,9 @@ struct InterruptibleOptions {
   /// The cycle's task granularity (collision_cycle.hpp): the paper's by
   /// default; TaskGranularity::fine_tasks() is the setting fine_tasks.
   TaskGranularity granularity{};
+  /// The cycle's work order (collision_cycle.hpp): by index (the paper's),
+  /// or fastest first (the variant interruptible_prioritized).
+  WorkOrder order = WorkOrder::Index;
   /// Under a wall budget, stop the cycle early by the time applying the
   /// forces took in recent steps (ours, the setting reserve_apply): the
   /// paper's budget covers the cycle's tasks, and the forces are applied

@@ -15,5 +15,6 @@ inline constexpr std::uint64_t kBorderPoint = 1;    ///< one colliding point's b
 inline constexpr std::uint64_t kPropagation = 1;    ///< one propagated point (plus one per neighbour read)
 inline constexpr std::uint64_t kNeighbour = 1;
 inline constexpr std::uint64_t kForce = 1;          ///< one penalty force
+inline constexpr std::uint64_t kPrioritize = 1;     ///< one point's place in the fastest-first order
 
 }  // namespace tcb::work

@@ -112,7 +112,8 @@ TEST_CASE("interruptible with no budget gives full's forces bit for bit, in both
     return true;
   };
   for (const ResponseMode mode : {ResponseMode::Explicit, ResponseMode::Implicit})
-  for (const char* name : {"interruptible", "interruptible_no_extrapolation", "interruptible_tracked"})
+  for (const char* name :
+       {"interruptible", "interruptible_no_extrapolation", "interruptible_tracked", "interruptible_prioritized"})
   for (const bool fine : {false, true}) {  // our fine tasks and reserve too: without a budget nothing changes
     INFO(name << (mode == ResponseMode::Implicit ? " implicit" : " explicit") << (fine ? " fine" : ""));
     test::TestScene scene = pressed_blocks();
