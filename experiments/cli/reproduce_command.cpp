@@ -9,9 +9,11 @@
 
 #include <algorithm>
 #include <chrono>
+#include <thread>
 #include <iostream>
 
 #include "experiments/check/thresholds.hpp"
+#include "experiments/run/thread_clock.hpp"
 #include "experiments/cli/command.hpp"
 #include "experiments/cli/report_runner.hpp"
 #include "experiments/run/provenance.hpp"
@@ -61,9 +63,17 @@ class ReproduceCommand final : public Command {
     // 0's interrupts); said either way, and recorded in every run.json.
     try {
       m_options.pin_cpus = parse_pin_cpus(m_pin, 1);
+      // The kernel may still refuse (a container's policy): try it on a
+      // thread of our own before every run would fail on it.
+      std::string refused;
+      std::thread([&] {
+        refused = pin_current_thread(m_options.pin_cpus[0]);
+      }).join();
+      if (!refused.empty()) throw InputError("--pin", 0, refused);
       std::cerr << fmt::format("reproduce: runs pinned to CPU {}\n", m_options.pin_cpus[0]);
     } catch (const InputError& e) {
       if (m_pin != "auto") throw;
+      m_options.pin_cpus.clear();
       std::cerr << "reproduce: runs not pinned (" << e.what() << ")\n";
     }
     const auto t0 = std::chrono::steady_clock::now();

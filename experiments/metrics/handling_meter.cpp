@@ -21,7 +21,10 @@ void HandlingMeter::on_step(StepContext& ctx) {
   m_handling_cpu_ms.push_back(ctx.handling_cpu_ms);
   if (ctx.budget) {
     m_max_task_work = std::max(m_max_task_work, ctx.budget->max_task_work());
-    if (m_budget.kind == BudgetKind::WallMs) m_max_task_us.push_back(1000.0 * ctx.budget->max_poll_gap_ms());
+    // A step with no poll (its only task finished the cycle, or the method
+    // ignores budgets) measured no interval: it adds nothing.
+    if (m_budget.kind == BudgetKind::WallMs && ctx.budget->polls() > 0)
+      m_max_task_us.push_back(1000.0 * ctx.budget->max_poll_gap_ms());
   }
   if (m_budget.kind != BudgetKind::WallMs) return;
   ctx.row.set("budget_ms", m_budget.value);

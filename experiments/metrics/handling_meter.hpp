@@ -14,10 +14,11 @@
 /// overshoot_us {p50, p99, max}: handling_ms - budget_ms in microseconds
 /// (null without a positive wall budget). The granularity: max_task_work,
 /// the largest single charge to a step's budget (one task; a whole cycle for
-/// methods that run it at once); max_task_us {p50, p99, max} over steps of
-/// each step's longest interval between two interruption checks (the first
-/// from the step's start), under a wall budget (null under others: no clock
-/// is read). The max is one event and on a shared machine often an
+/// methods that run it at once); max_task_us {p50, p99, max} over the steps
+/// that polled the budget of each step's longest interval between two
+/// interruption checks (the first from the budget's creation, just before
+/// the handler is called), under a wall budget (null under others, or when
+/// no step polled: no clock is read). The max is one event and on a shared machine often an
 /// interrupt's; the p99 is the task granularity a user can count on. Handling after the last check (applying forces) is not a
 /// task: it shows in the overshoot.
 

@@ -25,7 +25,8 @@ TimingVerdict timing_verdict(const TimingEvidence& e) {
     v.notes.push_back(fmt::format("load average {:.2f} at the start on {} CPUs (a lagging hint: it counts earlier "
                                   "runs too)",
                                   *e.loadavg_start, e.cpus));
-  if (!e.other_busy_cpus) v.notes.push_back("/proc/stat unreadable: the other processes' load is unknown");
+  if (!e.other_busy_cpus)
+    v.notes.push_back("the other processes' load is unknown (/proc/stat unreadable, or the run lasted under 1 s)");
   if (!e.governor) v.notes.push_back("CPU frequency governor not readable (no cpufreq here)");
   else if (*e.governor != "performance")
     v.notes.push_back("CPU frequency governor '" + *e.governor + "': the clock rate may change during the run");

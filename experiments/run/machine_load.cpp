@@ -45,7 +45,9 @@ MachineSample sample_machine() {
 std::optional<double> other_busy_cpus(const MachineSample& start, const MachineSample& end) {
   if (!start.busy_s || !end.busy_s) return std::nullopt;
   const double wall = end.wall_s - start.wall_s;
-  if (!(wall > 0.0)) return std::nullopt;
+  // /proc/stat counts in ticks of 10 ms per CPU: over less than a second the
+  // rounding alone could read as a quarter of a CPU busy.
+  if (!(wall >= kMinLoadWindowS)) return std::nullopt;
   const double others = (*end.busy_s - *start.busy_s) - (end.own_cpu_s - start.own_cpu_s);
   return std::max(0.0, others / wall);  // tick granularity can make a quiet machine read slightly below 0
 }

@@ -21,9 +21,14 @@ struct MachineSample {
 
 MachineSample sample_machine();
 
+inline constexpr double kMinLoadWindowS = 1.0;
+
 /// The average number of CPUs the other processes kept busy between two
 /// samples (busy time of the machine minus ours, over the wall time);
-/// nullopt when /proc/stat was unreadable or no time passed.
+/// nullopt when /proc/stat was unreadable or less than kMinLoadWindowS
+/// passed (its tick rounding would dominate). All of the machine's CPUs are
+/// counted, also those this process may not use (a container on a larger
+/// host sees its neighbours' load too).
 std::optional<double> other_busy_cpus(const MachineSample& start, const MachineSample& end);
 
 /// The machine's online CPUs (what /proc/stat's "cpu" line sums over); at least 1.

@@ -65,8 +65,11 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
   World world = build_world(scene.world);
   const RunSetup setup{scene, world, options.budget, options.oracle, options.overlap.value_or(options.oracle),
                        steps_total};
-  if (options.pin_cpu)
-    if (const std::string why = pin_current_thread(*options.pin_cpu); !why.empty()) throw InputError("--pin", 0, why);
+  std::optional<ScopedPin> pin;  // undone when the run returns
+  if (options.pin_cpu) {
+    pin.emplace(*options.pin_cpu);
+    if (!pin->error().empty()) throw InputError("--pin", 0, pin->error());
+  }
   const std::vector<std::unique_ptr<Meter>> meters = make_meters(setup);
   const CollisionSettings collision =
       resolve_collision_settings(world, scene.collision, scene.world.dt_s,

@@ -44,6 +44,26 @@ std::string pin_current_thread(int cpu) {
   return "cannot pin to CPU " + std::to_string(cpu) + " (" + std::strerror(err) + "; allowed: " + allowed + ")";
 }
 
+ScopedPin::ScopedPin(int cpu) {
+  cpu_set_t saved;
+  CPU_ZERO(&saved);
+  if (pthread_getaffinity_np(pthread_self(), sizeof saved, &saved) != 0) {
+    m_error = "cannot read the thread's CPU affinity";
+    return;
+  }
+  m_error = pin_current_thread(cpu);
+  if (!m_error.empty()) return;
+  const auto* bytes = reinterpret_cast<const unsigned char*>(&saved);
+  m_saved.assign(bytes, bytes + sizeof saved);
+}
+
+ScopedPin::~ScopedPin() {
+  if (m_saved.size() != sizeof(cpu_set_t)) return;
+  cpu_set_t saved;
+  std::memcpy(&saved, m_saved.data(), sizeof saved);
+  pthread_setaffinity_np(pthread_self(), sizeof saved, &saved);
+}
+
 std::optional<int> pinned_cpu() {
   cpu_set_t set;
   CPU_ZERO(&set);

@@ -31,4 +31,21 @@ std::string pin_current_thread(int cpu);
 /// CPU; nullopt otherwise.
 std::optional<int> pinned_cpu();
 
+/// Pins the calling thread for its lifetime and gives the thread its former
+/// affinity back when destroyed (a run pins; the next run in the same
+/// process must not inherit it). error() says why pinning failed (then
+/// nothing changed).
+class ScopedPin {
+ public:
+  explicit ScopedPin(int cpu);
+  ~ScopedPin();
+  ScopedPin(const ScopedPin&) = delete;
+  ScopedPin& operator=(const ScopedPin&) = delete;
+  const std::string& error() const { return m_error; }
+
+ private:
+  std::vector<unsigned char> m_saved;  // the former cpu_set_t, bytewise
+  std::string m_error;
+};
+
 }  // namespace tcb

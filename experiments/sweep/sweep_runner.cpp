@@ -218,6 +218,8 @@ std::vector<int> parse_pin_cpus(const std::string& text, std::size_t jobs) {
       if (std::find(allowed.begin(), allowed.end(), cpu) == allowed.end())
         throw InputError("--pin", 0, "CPU " + item + " is not one this process may use (" +
                                          std::to_string(allowed.size()) + " allowed)");
+      if (std::find(cpus.begin(), cpus.end(), cpu) != cpus.end())
+        throw InputError("--pin", 0, "CPU " + item + " is listed twice: each job needs its own CPU");
       cpus.push_back(cpu);
       start = comma + 1;
     }

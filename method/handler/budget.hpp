@@ -7,8 +7,8 @@
 /// task charges its fixed cost, work_units.hpp; reproducible on any machine).
 /// Work is counted under every kind, so steps.csv always reports it.
 /// expired() is true once the spent wall time or work reaches the budget; a
-/// budget of 0 is expired from the start (the handler still hashes the tets of
-/// a new cycle, which is not interruptible).
+/// budget of 0 is expired from the start (the cycle still runs one task a
+/// step: with the paper's granularity, a new cycle's hashing of all tets).
 /// The granularity the budget saw: max_task_work() is the largest single
 /// charge (one task's work; a whole cycle for methods that charge it at
 /// once), and for wall budgets max_poll_gap_ms() the longest interval between
@@ -50,6 +50,7 @@ class Budget {
         const double now = m_clock();
         m_max_gap_ms = std::max(m_max_gap_ms, now - m_last_poll_ms);
         m_last_poll_ms = now;
+        ++m_polls;
         return now - m_start_ms >= m_limit;
       }
     }
@@ -70,6 +71,8 @@ class Budget {
   }
   /// Wall budgets only (0 before the first poll and for other kinds).
   double max_poll_gap_ms() const { return m_max_gap_ms; }
+  /// How often expired() read the wall clock (wall budgets; 0 for others).
+  std::uint64_t polls() const { return m_polls; }
   std::uint64_t spent() const { return m_spent; }
   Kind kind() const { return m_kind; }
   double limit() const { return m_limit; }
@@ -82,6 +85,7 @@ class Budget {
   double m_start_ms = 0.0;
   std::uint64_t m_spent = 0, m_max_charge = 0;
   mutable double m_last_poll_ms = 0.0, m_max_gap_ms = 0.0;
+  mutable std::uint64_t m_polls = 0;
 };
 
 /// The number grammar of budget labels: a plain decimal >= 0 (digits and at

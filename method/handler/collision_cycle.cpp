@@ -1,6 +1,7 @@
 #include "method/handler/collision_cycle.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <tuple>
 
 #include "method/handler/work_units.hpp"
@@ -46,7 +47,8 @@ void CollisionCycle::prioritize(const World& world) {
   for (std::uint32_t i = 0; i < m_queries.size(); ++i) {
     m_query_order[i] = i;
     const auto [b, v] = m_queries[i];
-    speed2[i] = world.bodies[b].v_m_per_s[v].squaredNorm();
+    const double s2 = world.bodies[b].v_m_per_s[v].squaredNorm();
+    speed2[i] = std::isfinite(s2) ? s2 : 0.0;  // a strict weak order even for a diverged vertex
   }
   std::stable_sort(m_query_order.begin(), m_query_order.end(),
                    [&](std::uint32_t a, std::uint32_t b) { return speed2[a] > speed2[b]; });
@@ -154,7 +156,7 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
           enter(Stage::QueryPoints, world);
         } else {
           bool hashed = false;
-          work = m_detector.hash_some_tets(world, m_pairs, m_granularity.tets_per_task, hashed);
+          work = m_detector.hash_some_tets(world, m_pairs, std::max<std::size_t>(1, m_granularity.tets_per_task), hashed);
           if (hashed) {
             m_detector.mutable_hash().begin_build();
             enter(Stage::BuildTetHash, world);
@@ -162,7 +164,7 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
         }
         break;
       case Stage::BuildTetHash:
-        if (m_detector.mutable_hash().build_some(m_granularity.build_visits_per_task)) enter(Stage::QueryPoints, world);
+        if (m_detector.mutable_hash().build_some(std::max<std::size_t>(1, m_granularity.build_visits_per_task))) enter(Stage::QueryPoints, world);
         break;
       case Stage::QueryPoints:
         if (m_cursor < m_queries.size()) {
@@ -192,7 +194,7 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
         }
         break;
       case Stage::BuildSurfaceHash:
-        if (m_surface.build_some(m_granularity.build_visits_per_task)) enter(Stage::BorderDepth, world);
+        if (m_surface.build_some(std::max<std::size_t>(1, m_granularity.build_visits_per_task))) enter(Stage::BorderDepth, world);
         break;
       case Stage::BorderDepth:
         if (m_cursor < m_contacts.size()) {
@@ -231,7 +233,7 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
         }
         break;
       case Stage::BuildLayer:
-        if (scan_layer_some(world, m_granularity.layer_scan_per_task)) {
+        if (scan_layer_some(world, std::max<std::size_t>(1, m_granularity.layer_scan_per_task))) {
           if (m_layer_items.empty()) {
             enter(Stage::Forces, world);
           } else {

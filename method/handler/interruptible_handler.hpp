@@ -1,6 +1,10 @@
 #pragma once
 /// The paper's method: time-critical, interruptible collision
-/// handling. `interruptible`, and the ablation `interruptible_no_extrapolation`.
+/// handling. `interruptible`, the ablation `interruptible_no_extrapolation`,
+/// and our variants `interruptible_tracked` (below) and
+/// `interruptible_prioritized` (fastest points first, collision_cycle.hpp).
+/// The settings fine_tasks and reserve_apply (InterruptibleOptions) are ours
+/// too; by default every one of them keeps the paper's schedule.
 ///
 /// Every step works on the current collision cycle until the step's budget
 /// expires (polled only at the cycle's interruption points, collision_cycle.hpp)
@@ -59,7 +63,8 @@ namespace tcb {
 
 struct InterruptibleOptions {
   /// Track only: how many completed cycles a tracked contact outlives the
-  /// last cycle that found its point with a depth.
+  /// last cycle that found its point with a depth (0 here; the registry's
+  /// interruptible_tracked defaults to 1).
   std::int64_t keep_lost_cycles = 0;
   /// The cycle's task granularity (collision_cycle.hpp): the paper's by
   /// default; TaskGranularity::fine_tasks() is the setting fine_tasks.

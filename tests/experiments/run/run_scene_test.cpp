@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "experiments/results/steps_csv.hpp"
+#include "experiments/run/thread_clock.hpp"
 #include "experiments/scene/scene_file.hpp"
 #include "sim/io/atomic_file.hpp"
 #include "sim/io/input_error.hpp"
@@ -139,6 +140,19 @@ TEST_CASE("a run writes complete steps.csv and run.json", "[run]") {
   }
   CHECK(run["summary"]["timing"]["verdict"].is_string());
   CHECK(run["pin"].is_null());
+  CHECK(run["summary"]["max_task_us"].is_null());  // no wall budget: no clock read
+  // A pinned run records its CPU and gives the thread its affinity back.
+  const std::optional<int> before = pinned_cpu();
+  RunOptions pinned;
+  pinned.out_dir = fresh_dir("pinned");
+  pinned.steps = 3;
+  pinned.pin_cpu = allowed_cpus().back();
+  REQUIRE(run_scene(small_drop(), pinned).status == "ok");
+  const auto pinned_run = nlohmann::json::parse(read_file(pinned.out_dir / "run.json"));
+  CHECK(pinned_run["pin"] == *pinned.pin_cpu);
+  CHECK(pinned_run["summary"]["timing"]["pinned_cpu"] == *pinned.pin_cpu);
+  CHECK(pinned_cpu() == before);
+  fs::remove_all(pinned.out_dir);
   CHECK(fs::exists(dir / "frames.pvd"));
   CHECK(fs::exists(dir / "frames/frame_000050.vtu"));
   for (const auto& entry : fs::recursive_directory_iterator(dir)) CHECK(entry.path().extension() != ".tmp");
@@ -219,16 +233,16 @@ TEST_CASE("without contacts between bodies implicit and explicit response are th
 }
 
 TEST_CASE("under a work budget two runs are identical apart from timings", "[run]") {
-  // The paper's task granularity, and our fine tasks (resumable hashing).
-  for (const bool fine : {false, true}) {
-  INFO("fine_tasks " << fine);
+  // The paper's task granularity, our fine tasks (resumable hashing), and our fastest-first order.
+  for (const auto& [method, fine] : std::vector<std::pair<std::string, bool>>{
+           {"interruptible", false}, {"interruptible", true}, {"interruptible_prioritized", false}}) {
+  INFO(method << " fine_tasks " << fine);
   const fs::path a = fresh_dir("work_a"), b = fresh_dir("work_b");
-  const SceneDesc scene =
-      load_scene_file(resolve_scene("plates20", default_scene_dirs()),
-                      {std::string("method.interruptible.fine_tasks=") + (fine ? "true" : "false")});
+  const SceneDesc scene = load_scene_file(resolve_scene("plates20", default_scene_dirs()),
+                                          {"method." + method + ".fine_tasks=" + (fine ? "true" : "false")});
   for (const auto& dir : {a, b}) {
     RunOptions options;
-    options.method = "interruptible";
+    options.method = method;
     options.budget = {BudgetKind::Work, 20000};
     options.steps = 60;
     options.out_dir = dir;

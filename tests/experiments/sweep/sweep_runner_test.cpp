@@ -15,7 +15,9 @@
 
 #include "experiments/results/summary_csv.hpp"
 #include <nlohmann/json.hpp>
+#include "experiments/run/thread_clock.hpp"
 #include "sim/io/atomic_file.hpp"
+#include "sim/io/input_error.hpp"
 
 using namespace tcb;
 namespace fs = std::filesystem;
@@ -104,4 +106,28 @@ figures = ["jitter"]
   REQUIRE(sweep["runs"].size() == 9);
   for (const auto& run : sweep["runs"]) CHECK(read_complete_run(out / run.get<std::string>()).has_value());
   fs::remove_all(root);
+}
+
+TEST_CASE("--pin: auto gives the allowed CPUs highest first; lists are checked", "[sweep][pin]") {
+  const std::vector<int> allowed = allowed_cpus();
+  REQUIRE(!allowed.empty());
+  const std::vector<int> one = parse_pin_cpus("auto", 1);
+  CHECK(one == std::vector<int>{allowed.back()});  // away from CPU 0 where there is a choice
+  CHECK(parse_pin_cpus(std::to_string(allowed.front()), 1) == std::vector<int>{allowed.front()});
+  const auto rejects = [](const std::string& text, std::size_t jobs, const std::string& why) {
+    INFO(text);
+    try {
+      parse_pin_cpus(text, jobs);
+      FAIL("accepted");
+    } catch (const InputError& e) {
+      CHECK_THAT(std::string(e.what()), Catch::Matchers::Contains(why));
+    }
+  };
+  rejects("", 1, "expected auto or a list");
+  rejects("1,x", 1, "expected auto or a list");
+  rejects("-1", 1, "expected auto or a list");
+  rejects("99999", 1, "is not one this process may use");
+  rejects("auto", allowed.size() + 1, "CPUs to pin to");
+  const std::string cpu = std::to_string(allowed.front());
+  rejects(cpu + "," + cpu, 1, "listed twice");
 }

@@ -270,3 +270,34 @@ TEST_CASE("interruptible_tracked keeps a contact its cycles lost for keep_lost_c
     CHECK(f.y() == Approx(exact.y()).epsilon(1e-9));
   }
 }
+
+TEST_CASE("reserve_apply stops the cycle early by the time applying took in the step before", "[interruptible]") {
+  // On a clock that advances 1 ms a reading, applying the forces is measured
+  // between two readings: 1 ms. A 6 ms budget allows 6 tasks; with the
+  // reserve, the step after gets 6 - 1 = 5 tasks (without it, 6 again).
+  const test::TestScene scene = pressed_blocks();
+  const auto tasks_in_two_steps = [&](bool reserve) {
+    World world = build_world(scene.world);
+    InterruptibleHandler handler(InterruptibleHandler::Stale::Extrapolate, {.reserve_apply = reserve});
+    handler.init(world, test::settings_of(world, scene));
+    TickingClock ticking;
+    std::vector<std::int64_t> tasks;
+    for (int s = 0; s < 2; ++s) {
+      Budget b = Budget::wall_ms(6.0, ticking.clock());
+      REQUIRE_FALSE(handler.step(world, b).cycle_done);
+      tasks.push_back(handler.cycle().tasks_done());
+    }
+    return tasks;
+  };
+  CHECK(tasks_in_two_steps(false) == std::vector<std::int64_t>{6, 12});
+  CHECK(tasks_in_two_steps(true) == std::vector<std::int64_t>{6, 11});
+  // Under a work budget the reserve does nothing (no clock to measure with).
+  World world = build_world(scene.world);
+  InterruptibleHandler handler(InterruptibleHandler::Stale::Extrapolate, {.reserve_apply = true});
+  handler.init(world, test::settings_of(world, scene));
+  for (int s = 0; s < 2; ++s) {
+    Budget b = Budget::work_units(0);
+    handler.step(world, b);
+  }
+  CHECK(handler.cycle().tasks_done() == 2);
+}
