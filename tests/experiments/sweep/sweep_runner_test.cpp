@@ -108,7 +108,7 @@ figures = ["jitter"]
   fs::remove_all(root);
 }
 
-TEST_CASE("--pin: auto gives the allowed CPUs highest first; lists are checked", "[sweep][pin]") {
+TEST_CASE("pinning CPUs for sweeps: auto gives the allowed ones highest first; lists are checked", "[sweep][pin]") {
   const std::vector<int> allowed = allowed_cpus();
   REQUIRE(!allowed.empty());
   const std::vector<int> one = parse_pin_cpus("auto", 1);
