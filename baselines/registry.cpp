@@ -24,9 +24,17 @@ const SettingSpec kReserveApply{.name = "reserve_apply",
                                                "the forces took in recent steps, so the step ends within the budget "
                                                "(ours, not the paper's)"};
 
+const SettingSpec kWidenStale{.name = "widen_stale",
+                              .type = SettingSpec::Type::Boolean,
+                              .default_value = false,
+                              .description = "once a cycle spans steps, grow its point queries and border-edge "
+                                             "searches by how far the hashed elements can have moved since, so none "
+                                             "is missed for being hashed where it was (ours, not the paper's)"};
+
 InterruptibleHandler::Options interruptible_options(const MethodSettings& s, std::int64_t keep_lost_cycles = 0) {
   return {.keep_lost_cycles = keep_lost_cycles,
-          .granularity = s.boolean("fine_tasks") ? TaskGranularity::fine_tasks() : TaskGranularity{},
+          .schedule = {.granularity = s.boolean("fine_tasks") ? TaskGranularity::fine_tasks() : TaskGranularity{},
+                       .widen_stale = s.boolean("widen_stale")},
           .reserve_apply = s.boolean("reserve_apply")};
 }
 
@@ -38,7 +46,7 @@ const std::vector<MethodInfo>& method_registry() {
       {.name = "interruptible",
        .description = "the paper's method: the cycle under a time budget, resumed next step, forces extrapolated "
                       "meanwhile",
-       .settings = {kFineTasks, kReserveApply},
+       .settings = {kFineTasks, kReserveApply, kWidenStale},
        .make =
            [](const MethodSettings& s) {
              return std::make_unique<InterruptibleHandler>(Stale::Extrapolate, interruptible_options(s));
@@ -46,7 +54,7 @@ const std::vector<MethodInfo>& method_registry() {
        .uses_budget = true},
       {.name = "interruptible_no_extrapolation",
        .description = "ablation: interruptible without force extrapolation",
-       .settings = {kFineTasks, kReserveApply},
+       .settings = {kFineTasks, kReserveApply, kWidenStale},
        .make =
            [](const MethodSettings& s) {
              return std::make_unique<InterruptibleHandler>(Stale::Nothing, interruptible_options(s));
@@ -65,7 +73,8 @@ const std::vector<MethodInfo>& method_registry() {
                                     "tracked depth is <= 0) for this many more cycles; 0: forgotten at once, like "
                                     "the paper's history"},
                     kFineTasks,
-                    kReserveApply},
+                    kReserveApply,
+                    kWidenStale},
        .make =
            [](const MethodSettings& s) {
              return std::make_unique<InterruptibleHandler>(Stale::Track,
@@ -75,11 +84,11 @@ const std::vector<MethodInfo>& method_registry() {
       {.name = "interruptible_prioritized",
        .description = "variant (not in the paper; its future work): interruptible, but each cycle queries the "
                       "fastest points first, so they get their depth and force first",
-       .settings = {kFineTasks, kReserveApply},
+       .settings = {kFineTasks, kReserveApply, kWidenStale},
        .make =
            [](const MethodSettings& s) {
              InterruptibleHandler::Options options = interruptible_options(s);
-             options.order = WorkOrder::FastestFirst;
+             options.schedule.order = WorkOrder::FastestFirst;
              return std::make_unique<InterruptibleHandler>(Stale::Extrapolate, options);
            },
        .uses_budget = true},

@@ -28,7 +28,7 @@ std::uint64_t SurfaceHash::hash_triangle(const World& world, std::int32_t body, 
 }
 
 std::uint64_t border_point_depth(const World& world, Contact& c, const std::vector<Contact>& contacts,
-                                 const ContactLookup& lookup, SurfaceHash& surface) {
+                                 const ContactLookup& lookup, SurfaceHash& surface, double margin_m) {
   std::uint64_t work = work::kBorderPoint;
   const Body& A = world.bodies[c.object];
   const Body& B = world.bodies[c.other];
@@ -43,7 +43,8 @@ std::uint64_t border_point_depth(const World& world, Contact& c, const std::vect
     const Vec3& q = A.x_m[*q_it];
     double best_t = -1.0;
     Vec3 best_normal = Vec3::Zero();
-    surface.for_each_candidate(c.other, p.cwiseMin(q), p.cwiseMax(q), [&](std::int32_t tri) {
+    const Vec3 grow = Vec3::Constant(margin_m);
+    surface.for_each_candidate(c.other, p.cwiseMin(q) - grow, p.cwiseMax(q) + grow, [&](std::int32_t tri) {
       work += work::kCandidate;
       const Triangle& f = B.mesh->surface[tri];
       const Vec3 &a = B.x_m[f[0]], &b = B.x_m[f[1]], &cc = B.x_m[f[2]];

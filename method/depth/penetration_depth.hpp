@@ -66,8 +66,11 @@ class SurfaceHash {
 /// Border-point depth of one contact (see file comment). Sets depth,
 /// direction, source Border and layer 0 when p has a border edge that crosses
 /// B's surface; leaves the contact without depth otherwise. Returns work units.
+/// `margin_m` > 0: the surface triangles may have moved up to that far since
+/// they were hashed; each edge's candidate box is grown by it (the exact
+/// crossing test uses the current positions). 0: the paper's search.
 std::uint64_t border_point_depth(const World& world, Contact& contact, const std::vector<Contact>& contacts,
-                                 const ContactLookup& lookup, SurfaceHash& surface);
+                                 const ContactLookup& lookup, SurfaceHash& surface, double margin_m = 0.0);
 
 /// Propagated depth of one contact at `layer` >= 1 from neighbours whose depth
 /// comes from layers below it. Returns work units.

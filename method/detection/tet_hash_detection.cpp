@@ -88,7 +88,8 @@ std::uint64_t TetHashDetector::hash_some_tets(const World& world, const Collisio
 }
 
 std::optional<Contact> TetHashDetector::query_point(const World& world, const CollisionPairs& pairs,
-                                                    std::int32_t object, std::int32_t vertex, std::uint64_t& work) {
+                                                    std::int32_t object, std::int32_t vertex, std::uint64_t& work,
+                                                    double margin_m) {
   const Vec3& p = world.bodies[object].x_m[vertex];
   if (++m_query == 0) {  // wrapped: reset the per-tet stamps once
     std::fill(m_tested.begin(), m_tested.end(), 0);
@@ -96,7 +97,8 @@ std::optional<Contact> TetHashDetector::query_point(const World& world, const Co
   }
   work += work::kPointQuery;
   std::uint32_t best = UINT32_MAX;
-  m_hash.for_each_in_cell(p, [&](std::uint32_t id) {
+  const Vec3 grow = Vec3::Constant(margin_m);
+  const auto test = [&](std::uint32_t id) {
     if (m_tested[id] == m_query || id >= best) return;
     m_tested[id] = m_query;
     const std::int32_t other = m_owner[id];
@@ -105,11 +107,13 @@ std::optional<Contact> TetHashDetector::query_point(const World& world, const Co
     const Body& B = world.bodies[other];
     const Tet& tet = B.mesh->tets[t];
     if (other == object && incident(tet, vertex)) return;
-    const Vec3 &lo = m_tet_lo[id], &hi = m_tet_hi[id];
+    const Vec3 lo = m_tet_lo[id] - grow, hi = m_tet_hi[id] + grow;
     if ((p.array() < lo.array()).any() || (p.array() > hi.array()).any()) return;
     work += work::kCandidate;
     if (point_in_tet_perturbed(p, B.x_m[tet[0]], B.x_m[tet[1]], B.x_m[tet[2]], B.x_m[tet[3]])) best = id;
-  });
+  };
+  if (margin_m > 0.0) work += m_hash.for_each_in_box(p - grow, p + grow, test) - 1;  // a unit a further cell
+  else m_hash.for_each_in_cell(p, test);
   if (best == UINT32_MAX) return std::nullopt;
   const std::int32_t other = m_owner[best];
   return make_contact(world, object, vertex, other, static_cast<std::int32_t>(best - m_body_tet_offset[other]));

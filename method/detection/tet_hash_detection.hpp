@@ -44,9 +44,14 @@ class TetHashDetector {
   void begin_hash();
   std::uint64_t hash_some_tets(const World& world, const CollisionPairs& pairs, std::size_t max_tets, bool& done);
   SpatialHash& mutable_hash() { return m_hash; }
-  /// Stage 2 for one vertex; adds its work units to `work`.
+  /// Stage 2 for one vertex; adds its work units to `work`. `margin_m` > 0
+  /// (widened query): tets may have moved up to that far (m, max norm) since
+  /// they were hashed, so every cell within margin_m of the point is
+  /// searched and the stored AABBs are grown by it before the exact test
+  /// with the current positions; then no tet that now holds the point is
+  /// missed. margin_m = 0 is the paper's query: the point's cell only.
   std::optional<Contact> query_point(const World& world, const CollisionPairs& pairs, std::int32_t object,
-                                     std::int32_t vertex, std::uint64_t& work);
+                                     std::int32_t vertex, std::uint64_t& work, double margin_m = 0.0);
 
   const SpatialHash& hash() const { return m_hash; }
 

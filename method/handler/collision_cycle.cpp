@@ -9,11 +9,12 @@
 namespace tcb {
 
 CollisionCycle::CollisionCycle(const World& world, CollisionSettings settings, DetectionMode mode,
-                               TaskGranularity granularity, WorkOrder order)
+                               CycleSchedule schedule)
     : m_settings(std::move(settings)),
       m_mode(mode),
-      m_granularity(granularity),
-      m_order(order),
+      m_granularity(schedule.granularity),
+      m_order(schedule.order),
+      m_widen_stale(schedule.widen_stale),
       m_pairs(world),
       m_detector(world, m_settings.detection),
       m_surface(world, m_settings.detection.cell_size_m, m_settings.detection.hash) {
@@ -29,6 +30,8 @@ CollisionCycle::CollisionCycle(const World& world, CollisionSettings settings, D
 }
 
 void CollisionCycle::begin(const World& world) {
+  m_tet_margin_m = m_surface_margin_m = 0.0;  // a new tet hash starts now
+  m_margin_step = world.step_index;
   for (const Contact& c : m_contacts) m_lookup[c.object][c.vertex] = -1;
   m_contacts.clear();
   ++m_number;
@@ -39,6 +42,19 @@ void CollisionCycle::begin(const World& world) {
   }
   enter(m_mode == DetectionMode::SpatialHash ? Stage::HashTets : Stage::QueryPoints, world);
   if (m_stage == Stage::HashTets && m_granularity.fine()) m_detector.begin_hash();
+}
+
+void CollisionCycle::grow_margins(const World& world) {
+  if (!m_widen_stale || world.step_index == m_margin_step) return;
+  // One O(vertices) scan a step, while a cycle spans steps (not charged: like
+  // the handler's own bookkeeping). A diverged state widens nothing.
+  const double fastest = world.max_speed_m_per_s();
+  const double moved = std::isfinite(fastest)
+                           ? static_cast<double>(world.step_index - m_margin_step) * m_settings.dt_s * fastest
+                           : 0.0;
+  m_tet_margin_m += moved;
+  m_surface_margin_m += moved;
+  m_margin_step = world.step_index;
 }
 
 void CollisionCycle::prioritize(const World& world) {
@@ -83,6 +99,7 @@ void CollisionCycle::enter(Stage stage, const World& world) {
       if (needed[b] && !world.bodies[b].mesh->surface.empty()) m_surface_bodies.push_back(static_cast<std::int32_t>(b));
     m_surface_body = 0;
     m_surface.begin_epoch();
+    m_surface_margin_m = 0.0;  // a new surface hash starts now
   } else if (stage == Stage::Propagate) {
     m_layer = 0;
     if (m_granularity.fine()) start_layer_scan();  // stage BuildLayer
@@ -141,6 +158,7 @@ void CollisionCycle::build_next_layer(const World& world) {
 }
 
 bool CollisionCycle::advance(World& world, Budget& budget) {
+  grow_margins(world);
   while (m_stage != Stage::Done && m_stage != Stage::Idle) {
     std::uint64_t work = 0;
     switch (m_stage) {
@@ -211,7 +229,7 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
             }
           }
           if (!c.separated) {
-            work += border_point_depth(world, c, m_contacts, m_lookup, m_surface);
+            work += border_point_depth(world, c, m_contacts, m_lookup, m_surface, m_surface_margin_m);
             c.depth_offset_m = contact_offset_m(world, c);
           }
         }
@@ -266,8 +284,9 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
 
 std::optional<Contact> CollisionCycle::detect(const World& world, std::int32_t body, std::int32_t vertex,
                                               std::uint64_t& work) {
-  return m_mode == DetectionMode::SpatialHash ? m_detector.query_point(world, m_pairs, body, vertex, work)
-                                              : brute_force_query_point(world, m_pairs, body, vertex, work);
+  return m_mode == DetectionMode::SpatialHash
+             ? m_detector.query_point(world, m_pairs, body, vertex, work, m_tet_margin_m)
+             : brute_force_query_point(world, m_pairs, body, vertex, work);
 }
 
 std::size_t CollisionCycle::queries_done() const {

@@ -80,6 +80,21 @@ struct TaskGranularity {
   static TaskGranularity fine_tasks() { return {16, 2048, 32}; }
 };
 
+/// How a cycle schedules its work: the paper's by default. Every field is a
+/// setting of ours (method/handler/interruptible_handler.hpp).
+struct CycleSchedule {
+  TaskGranularity granularity{};
+  WorkOrder order = WorkOrder::Index;
+  /// Widened queries (setting widen_stale): once a cycle spans steps, the
+  /// tets and surface triangles it hashed earlier have moved. The cycle keeps
+  /// a bound on how far, the sum over the steps since each hash began of
+  /// dt x the fastest vertex's speed (exact for the integrators here, where
+  /// x+ = x + dt v+), and grows every later point query and border-edge
+  /// search by it, so nothing that now collides is missed for being hashed
+  /// where it was. The paper queries the point's own cell (margin 0).
+  bool widen_stale = false;
+};
+
 class CollisionCycle {
  public:
   enum class Stage {
@@ -98,7 +113,10 @@ class CollisionCycle {
   };
 
   CollisionCycle(const World& world, CollisionSettings settings, DetectionMode mode = DetectionMode::SpatialHash,
-                 TaskGranularity granularity = {}, WorkOrder order = WorkOrder::Index);
+                 CycleSchedule schedule = {});
+  /// The motion bounds of widen_stale (m): since the tet hash, and the surface hash, began.
+  double tet_margin_m() const { return m_tet_margin_m; }
+  double surface_margin_m() const { return m_surface_margin_m; }
 
   /// Starts a new cycle (the previous one's results are dropped).
   void begin(const World& world);
@@ -125,6 +143,7 @@ class CollisionCycle {
   std::optional<Contact> detect(const World& world, std::int32_t body, std::int32_t vertex, std::uint64_t& work);
   void build_next_layer(const World& world);
   void prioritize(const World& world);
+  void grow_margins(const World& world);
   void restore_index_order();
   void start_layer_scan();
   bool scan_layer_some(const World& world, std::size_t max_contacts);
@@ -133,6 +152,9 @@ class CollisionCycle {
   DetectionMode m_mode;
   TaskGranularity m_granularity;
   WorkOrder m_order;
+  bool m_widen_stale;
+  double m_tet_margin_m = 0.0, m_surface_margin_m = 0.0;
+  std::int64_t m_margin_step = 0;  // world.step_index the margins are up to date with
   std::vector<std::uint32_t> m_query_order;  // FastestFirst: indices into m_queries, fastest first
   CollisionPairs m_pairs;
   TetHashDetector m_detector;

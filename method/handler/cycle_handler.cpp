@@ -5,7 +5,7 @@
 namespace tcb {
 
 void CycleHandler::init(const World& world, const CollisionSettings& settings) {
-  m_cycle = std::make_unique<CollisionCycle>(world, settings, m_mode, m_granularity, m_order);
+  m_cycle = std::make_unique<CollisionCycle>(world, settings, m_mode, m_schedule);
 }
 
 const std::vector<Contact>& CycleHandler::contacts() const {

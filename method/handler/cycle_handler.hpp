@@ -15,9 +15,8 @@ namespace tcb {
 
 class CycleHandler : public CollisionHandler {
  public:
-  explicit CycleHandler(DetectionMode mode = DetectionMode::SpatialHash, TaskGranularity granularity = {},
-                        WorkOrder order = WorkOrder::Index)
-      : m_mode(mode), m_granularity(granularity), m_order(order) {}
+  explicit CycleHandler(DetectionMode mode = DetectionMode::SpatialHash, CycleSchedule schedule = {})
+      : m_mode(mode), m_schedule(schedule) {}
   void init(const World& world, const CollisionSettings& settings) override;
   const std::vector<Contact>& contacts() const override;
   /// The cycle (after init()), for schedules and tests.
@@ -41,8 +40,7 @@ class CycleHandler : public CollisionHandler {
 
  private:
   DetectionMode m_mode;
-  TaskGranularity m_granularity;
-  WorkOrder m_order;
+  CycleSchedule m_schedule;
   std::unique_ptr<CollisionCycle> m_cycle;
 };
 

@@ -8,7 +8,7 @@
 namespace tcb {
 
 InterruptibleHandler::InterruptibleHandler(Stale stale, Options options)
-    : CycleHandler(DetectionMode::SpatialHash, options.granularity, options.order),
+    : CycleHandler(DetectionMode::SpatialHash, options.schedule),
       m_stale(stale),
       m_keep_lost_cycles(stale == Stale::Track ? options.keep_lost_cycles : 0),
       m_reserve_apply(options.reserve_apply) {}

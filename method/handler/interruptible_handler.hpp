@@ -66,12 +66,11 @@ struct InterruptibleOptions {
   /// last cycle that found its point with a depth (0 here; the registry's
   /// interruptible_tracked defaults to 1).
   std::int64_t keep_lost_cycles = 0;
-  /// The cycle's task granularity (collision_cycle.hpp): the paper's by
-  /// default; TaskGranularity::fine_tasks() is the setting fine_tasks.
-  TaskGranularity granularity{};
-  /// The cycle's work order (collision_cycle.hpp): by index (the paper's),
-  /// or fastest first (the variant interruptible_prioritized).
-  WorkOrder order = WorkOrder::Index;
+  /// The cycle's schedule (collision_cycle.hpp), the paper's by default: its
+  /// task granularity (TaskGranularity::fine_tasks() is the setting
+  /// fine_tasks), its work order (fastest first: the variant
+  /// interruptible_prioritized) and widened queries (the setting widen_stale).
+  CycleSchedule schedule{};
   /// Under a wall budget, stop the cycle early by the time applying the
   /// forces took in recent steps (ours, the setting reserve_apply): the
   /// paper's budget covers the cycle's tasks, and the forces are applied
