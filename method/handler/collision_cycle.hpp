@@ -91,7 +91,9 @@ struct CycleSchedule {
   /// dt x the fastest vertex's speed (exact for the integrators here, where
   /// x+ = x + dt v+), and grows every later point query and border-edge
   /// search by it, so nothing that now collides is missed for being hashed
-  /// where it was. The paper queries the point's own cell (margin 0).
+  /// where it was. The bound is capped at half a cell (beyond it, it no
+  /// longer holds): uncapped, slow wide queries lengthen the cycle, which
+  /// widens them further. The paper queries the point's own cell (margin 0).
   bool widen_stale = false;
 };
 

@@ -136,10 +136,11 @@ TEST_CASE("a wall budget's reserve lowers its limit; elapsed time is not a poll"
   CHECK(work.max_task_work() == 7);
 }
 
-TEST_CASE("widened queries find what moved since it was hashed; the paper's query misses some", "[cycle][granularity]") {
+TEST_CASE("widened queries find what moved since it was hashed; the paper's query misses some",
+          "[cycle][granularity]") {
   // Hash and build (two tasks of an all-in-one fine cycle), then move box b
-  // by 5 cm as one step of 1 ms at 50 m/s would, then query: the hash holds
-  // b's tets where they were.
+  // by 0.45 cell (under the margin's cap of half a cell) as one step of 1 ms
+  // would, then query: the hash holds b's tets where they were.
   const test::TestScene scene = scenes()[0].second;
   const auto points_after_move = [&](bool widen) {
     World world = build_world(scene);
@@ -152,7 +153,7 @@ TEST_CASE("widened queries find what moved since it was hashed; the paper's quer
       REQUIRE_FALSE(cycle.advance(world, zero));
     }
     REQUIRE(cycle.stage() == CollisionCycle::Stage::QueryPoints);
-    const Vec3 move(0.05, 0.0, 0.0);
+    const Vec3 move(0.45 * cycle.settings().detection.cell_size_m, 0.0, 0.0);
     for (std::size_t v = 0; v < world.bodies[1].x_m.size(); ++v) {
       world.bodies[1].x_m[v] += move;
       world.bodies[1].v_m_per_s[v] = move / scene.world.dt_s;
@@ -160,7 +161,7 @@ TEST_CASE("widened queries find what moved since it was hashed; the paper's quer
     ++world.step_index;
     Budget unlimited = Budget::unlimited();
     REQUIRE(cycle.advance(world, unlimited));
-    if (widen) CHECK(cycle.tet_margin_m() == Approx(0.05));
+    if (widen) CHECK(cycle.tet_margin_m() == Approx(move.x()));
     std::set<std::tuple<int, int, int, int>> points;
     for (const Contact& c : cycle.contacts())
       if (!c.separated) points.insert({c.object, c.vertex, c.other, c.tet});
