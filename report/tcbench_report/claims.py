@@ -134,8 +134,10 @@ def worst_overshoot(runs, ctx):
 
     def text(group, what):
         wall, cpu = worst(group, "overshoot_pct.p99"), worst(group, "overshoot_cpu_pct.p99")
-        out = f"{what}: overshoot p99 up to {wall.metric('overshoot_pct.p99'):.1f} % ({wall.name}"
-        out += f"; {plural(len(group), 'run')})"
+        out = f"{what}: overshoot p99 up to {wall.metric('overshoot_pct.p99'):.1f} %"
+        if wall.metric("overshoot_us.p99") is not None:
+            out += f" = {wall.metric('overshoot_us.p99'):.0f} us"
+        out += f" ({wall.name}; {plural(len(group), 'run')})"
         if cpu is not None:
             out += f", CPU-time overshoot p99 up to {cpu.metric('overshoot_cpu_pct.p99'):.1f} % ({cpu.name})"
         return out

@@ -37,6 +37,12 @@ class GranularityClaim(unittest.TestCase):
         measured, verdict = worst_overshoot([run("loaded", 120.0, 8.0, "noisy")], None)
         self.assertEqual(verdict, f"{INCONCLUSIVE}: measured on a noisy machine (CPU-time overshoot 8.0 %)")
 
+    def test_the_overshoot_is_also_given_in_microseconds(self):
+        r = run("a", 3.0, 2.9, "quiet")
+        r.summary["overshoot_us"] = {"p99": 107.0}
+        measured, _ = worst_overshoot([r], None)
+        self.assertIn("3.0 % = 107 us", measured)
+
     def test_runs_before_the_verdict_are_judged_as_before(self):
         _, verdict = worst_overshoot([run("old", 4.0, None, None)], None)
         self.assertEqual(verdict, HOLDS)
