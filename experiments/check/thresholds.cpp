@@ -34,11 +34,19 @@ std::vector<Threshold> load_thresholds(const std::filesystem::path& path) {
     th.scene = need("scene");
     th.method = need("method");
     th.metric = need("metric");
+    const auto is = [&](const std::string& key) { return th.metric == key || th.metric.rfind(key + ".", 0) == 0; };
+    th.wall_metric = is("handling_ms") || is("overshoot_pct") || is("dynamics_ms");
+    const bool cpu_metric = is("handling_cpu_ms") || is("overshoot_cpu_pct");  // the thread's own time: never
     th.budget = r.string("budget").value_or("none");
     // The label as run.json records it: absolute budgets in their one
     // spelling, relative ones (full/3) as written; anything else is a typo.
-    if (const auto b = parse_sweep_budget(th.budget)) th.budget = b->label;
-    else r.fail("budget", "'" + th.budget + "' is not none, ms:X, work:N, full/K or full-work/K");
+    if (const auto b = parse_sweep_budget(th.budget)) {
+      th.budget = b->label;
+      th.wall_budget = !cpu_metric && (b->relative == SweepBudget::Relative::FullMs ||
+                                       (!b->is_relative() && b->absolute.kind == BudgetKind::WallMs));
+    } else {
+      r.fail("budget", "'" + th.budget + "' is not none, ms:X, work:N, full/K or full-work/K");
+    }
     if (const auto seed = r.integer("seed", 0, std::int64_t{1} << 62)) th.seed = static_cast<std::uint64_t>(*seed);
     th.response = r.string("response");
     if (th.response && *th.response != "implicit" && *th.response != "explicit")
@@ -57,30 +65,42 @@ std::vector<Threshold> load_thresholds(const std::filesystem::path& path) {
 
 namespace {
 
-std::string response_of(const nlohmann::json& run) { return run.value("response", "explicit"); }
+/// What a threshold matches a run by, read once per run.
+struct RunKey {
+  std::string name;  ///< path below DIR
+  std::filesystem::path folder;
+  std::string scene, method_label, budget, response;
+  std::uint64_t seed = 0;
+  std::int64_t steps = 0;
+  nlohmann::json overrides;
+  bool noisy = false;
+  const nlohmann::json* record = nullptr;
+};
 
-bool noisy(const nlohmann::json& run) {
-  const auto summary = run.find("summary");
-  if (summary == run.end() || !summary->is_object()) return false;
-  const auto timing = summary->find("timing");
-  return timing != summary->end() && timing->is_object() && timing->value("verdict", "") == "noisy";
+RunKey key_of(std::string name, const nlohmann::json& run) {
+  RunKey k;
+  k.folder = std::filesystem::path(name).parent_path();
+  k.name = std::move(name);
+  k.scene = run.value("scene", "");
+  k.method_label = run.value("method_label", run.value("method", ""));  // tcbench.run/1 had no label
+  k.budget = run.value("budget", nlohmann::json::object()).value("label", "none");
+  k.response = run.value("response", "explicit");  // runs recorded before the field were explicit
+  k.seed = run.value("seed", std::uint64_t{0});
+  k.steps = run.value("steps_requested", run.value("steps", std::int64_t{0}));
+  k.overrides = run.value("overrides", nlohmann::json::array());
+  const nlohmann::json summary = run.value("summary", nlohmann::json::object());
+  k.noisy = summary.is_object() && summary.value("timing", nlohmann::json::object()).value("verdict", "") == "noisy";
+  k.record = &run;
+  return k;
 }
 
-bool wall_clock(const Threshold& th, const nlohmann::json& run) {
-  const auto is = [&](const std::string& key) { return th.metric == key || th.metric.rfind(key + ".", 0) == 0; };
-  if (is("handling_cpu_ms") || is("overshoot_cpu_pct")) return false;  // the handling thread's own time
-  for (const char* key : {"handling_ms", "overshoot_pct", "dynamics_ms"})
-    if (is(key)) return true;
-  return run.value("budget", nlohmann::json::object()).value("kind", "") == "wall_ms";
-}
-
-/// The run's --set overrides without its method settings: what its reference shares.
-std::vector<std::string> scene_overrides(const nlohmann::json& run) {
-  std::vector<std::string> out;
-  for (const auto& o : run.value("overrides", nlohmann::json::array()))
-    if (o.is_string() && o.get<std::string>().rfind("method.", 0) != 0) out.push_back(o.get<std::string>());
-  std::sort(out.begin(), out.end());
-  return out;
+/// The run a relative threshold divides by; null when there is none.
+const RunKey* reference_of(const RunKey& run, const std::string& label, const std::vector<RunKey>& runs) {
+  for (const RunKey& o : runs)
+    if (o.folder == run.folder && o.scene == run.scene && o.method_label == label && o.budget == "none" &&
+        o.seed == run.seed && o.response == run.response && o.steps == run.steps && o.overrides == run.overrides)
+      return &o;
+  return nullptr;
 }
 
 }  // namespace
@@ -89,11 +109,11 @@ std::vector<CheckRow> check_thresholds(const std::vector<Threshold>& thresholds,
   // Run directories: DIR and every folder beneath it holding a complete
   // run.json (a sweep's DIR/runs/*, reproduce's DIR/<sweep>/runs/*), named by
   // their path relative to DIR. Reports and frames are not searched.
-  std::vector<std::pair<std::string, nlohmann::json>> runs;
+  std::vector<std::pair<std::string, nlohmann::json>> records;
   const auto consider = [&](const std::filesystem::path& d) {
     if (auto r = read_complete_run(d)) {
       const std::string name = d == dir ? d.filename().string() : std::filesystem::relative(d, dir).string();
-      runs.emplace_back(name, std::move(*r));
+      records.emplace_back(name, std::move(*r));
     }
   };
   consider(dir);
@@ -107,33 +127,24 @@ std::vector<CheckRow> check_thresholds(const std::vector<Threshold>& thresholds,
       }
       consider(it->path());
     }
-  std::sort(runs.begin(), runs.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::sort(records.begin(), records.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<RunKey> runs;
+  for (const auto& [name, record] : records) runs.push_back(key_of(name, record));
   std::vector<CheckRow> rows;
   for (const Threshold& th : thresholds) {
     bool matched = false;
-    for (const auto& [name, run] : runs) {
-      if (run.value("scene", "") != th.scene || run.value("method_label", run.value("method", "")) != th.method)
-        continue;
-      const nlohmann::json budget = run.value("budget", nlohmann::json::object());
-      if (budget.value("label", "none") != th.budget) continue;
-      if (th.seed && run.value("seed", std::uint64_t{0}) != *th.seed) continue;
-      if (th.response && response_of(run) != *th.response) continue;
+    for (const RunKey& run : runs) {
+      if (run.scene != th.scene || run.method_label != th.method || run.budget != th.budget) continue;
+      if ((th.seed && run.seed != *th.seed) || (th.response && run.response != *th.response)) continue;
       matched = true;
-      CheckRow row{&th, name, "", summary_metric(run, th.metric), ""};
-      bool inconclusive = wall_clock(th, run) && noisy(run);
+      CheckRow row{&th, run.name, "", summary_metric(*run.record, th.metric), ""};
+      bool inconclusive = (th.wall_metric || th.wall_budget) && run.noisy;
       if (th.relative_to) {
-        std::optional<double> reference;
-        for (const auto& [other_name, other] : runs) {
-          if (other.value("scene", "") != run.value("scene", "") ||
-              other.value("method_label", other.value("method", "")) != *th.relative_to ||
-              other.value("budget", nlohmann::json::object()).value("label", "none") != "none" ||
-              other.value("seed", std::uint64_t{0}) != run.value("seed", std::uint64_t{0}) ||
-              response_of(other) != response_of(run) || scene_overrides(other) != scene_overrides(run))
-            continue;
-          row.reference = other_name;
-          reference = summary_metric(other, th.metric);
-          inconclusive = inconclusive || (wall_clock(th, other) && noisy(other));
-          break;
+        const RunKey* ref = reference_of(run, *th.relative_to, runs);
+        const std::optional<double> reference = ref ? summary_metric(*ref->record, th.metric) : std::nullopt;
+        if (ref) {
+          row.reference = ref->name;
+          inconclusive = inconclusive || (th.wall_metric && ref->noisy);  // its budget is none
         }
         row.value = row.value && reference && *reference != 0.0 ? std::optional(*row.value / *reference) : std::nullopt;
       }

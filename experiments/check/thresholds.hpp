@@ -15,8 +15,9 @@
 ///
 /// With relative_to, the bounded value is the run's metric divided by its
 /// reference's: the run of that method label with budget none, the same
-/// scene, seed and response mode, and the same --set overrides apart from
-/// method settings (the sweep's reference run). "Jitter within 2x of full's"
+/// scene, seed, response mode, length and --set overrides (run.json keeps
+/// only the scene's), in the same folder as the run (the sweep's own
+/// reference, never another sweep's of the same scene). "Jitter within 2x of full's"
 /// is `metric = "jitter"`, `relative_to = "full"`, `max = 2`.
 ///
 /// A threshold whose run is missing, or whose metric is null or absent in it,
@@ -43,6 +44,9 @@ struct Threshold {
   std::optional<std::uint64_t> seed;
   std::optional<std::string> response;     ///< "implicit" or "explicit"
   std::optional<std::string> relative_to;  ///< a method label: bound the ratio to its run's metric
+  /// Wall clock decides the value (see above): a wall-clock metric, or a run
+  /// under a wall-clock budget. Set by load_thresholds.
+  bool wall_metric = false, wall_budget = false;
   std::optional<double> min, max;
   int line = 0;
 };

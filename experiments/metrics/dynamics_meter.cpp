@@ -18,9 +18,9 @@ void DynamicsMeter::on_step(StepContext& ctx) {
     iterations += b.model->last_solver_iterations();
     if (!b.model->last_solve_converged()) ++m_unconverged_steps;  // counted per body, as always
   }
-  ctx.row.set("kinetic_energy", ctx.world.kinetic_energy_j());
+  ctx.row.set("kinetic_energy", ctx.kinetic_energy_j);
   ctx.row.set("dynamics_ms", ctx.dynamics_ms);
-  ctx.row.set("max_speed", ctx.world.max_speed_m_per_s());
+  ctx.row.set("max_speed", ctx.max_speed_m_per_s);
   ctx.row.set("solver_iterations", iterations);
   m_dynamics_ms.push_back(ctx.dynamics_ms);
   m_iterations.push_back(static_cast<double>(iterations));

@@ -35,7 +35,7 @@ class HandlingMeter final : public Meter {
 
  private:
   BudgetSpec m_budget;
-  std::vector<double> m_handling_ms, m_handling_cpu_ms, m_overshoot_pct, m_overshoot_cpu_pct, m_overshoot_us;
+  std::vector<double> m_handling_ms, m_handling_cpu_ms;  // the overshoots are derived from them
   std::uint64_t m_max_task_work = 0;
   std::vector<double> m_max_task_us;
 };

@@ -67,6 +67,9 @@ struct StepContext {
   std::int64_t handling_switches = 0;    ///< its involuntary context switches during handling
   const Budget* budget = nullptr;        ///< the step's budget after handling (its granularity figures)
   double dynamics_ms = 0.0;  ///< set before on_step()
+  /// The integrated state's fastest vertex (m/s; NaN when not finite) and
+  /// kinetic energy (J), computed once after world.step for every meter.
+  double max_speed_m_per_s = 0.0, kinetic_energy_j = 0.0;
   StepRow& row;
   /// Oracle frames computed this step (before_dynamics), for the meters that
   /// need the truth: null when the oracle did not run.

@@ -8,10 +8,10 @@ namespace tcb {
 
 void SettledMeter::on_step(StepContext& ctx) {
   if (!in_settled_half(ctx.step, m_steps_total)) return;
-  const double speed = ctx.world.max_speed_m_per_s();
+  const double speed = ctx.max_speed_m_per_s;
   if (!std::isfinite(speed)) return;  // the stability meter stops such a run
   m_max_speed.push_back(speed);
-  m_kinetic_energy.push_back(ctx.world.kinetic_energy_j());
+  m_kinetic_energy.push_back(ctx.kinetic_energy_j);
 }
 
 void SettledMeter::summarize(Json& summary) const {

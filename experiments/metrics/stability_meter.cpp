@@ -7,7 +7,7 @@
 namespace tcb {
 
 void StabilityMeter::on_step(StepContext& ctx) {
-  const double speed = ctx.world.max_speed_m_per_s();
+  const double speed = ctx.max_speed_m_per_s;
   if (std::isnan(speed)) {
     ++m_nan_steps;
     ctx.unstable = fmt::format("non-finite position or velocity at step {}", ctx.step);

@@ -92,8 +92,9 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
     Budget budget = options.budget.start();
     // The thread clocks are read inside the wall interval, so CPU time <= wall
     // time up to the clocks' resolution (handling_cpu_ms, timing_meter.hpp).
+    const std::int64_t switches_before = thread_involuntary_switches();
     const auto t_handler = Clock::now();
-    const ThreadTimes cpu_before = read_thread_times();
+    const double cpu_before_ms = thread_cpu_ms();
     StepReport report;
     try {
       report = handler->step(world, budget);
@@ -101,22 +102,25 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
       outcome = {"unstable", fmt::format("collision handling at step {}: {}", world.step_index + 1, e.what()), s, 0.0};
       break;
     }
-    const ThreadTimes cpu_after = read_thread_times();
+    const double cpu_after_ms = thread_cpu_ms();
     const double handling_ms = ms_since(t_handler);
+    const std::int64_t switches = thread_involuntary_switches() - switches_before;
     StepRow row = record.row();
     StepContext ctx{.step = world.step_index + 1,
                     .world = world,
                     .handler = *handler,
                     .report = report,
                     .handling_ms = handling_ms,
-                    .handling_cpu_ms = cpu_after.cpu_ms - cpu_before.cpu_ms,
-                    .handling_switches = cpu_after.involuntary_switches - cpu_before.involuntary_switches,
+                    .handling_cpu_ms = cpu_after_ms - cpu_before_ms,
+                    .handling_switches = switches,
                     .budget = &budget,
                     .row = row};
     for (const auto& m : meters) m->before_dynamics(ctx);
     const auto t_dynamics = Clock::now();
     world.step(scene.world.dt_s);
     ctx.dynamics_ms = ms_since(t_dynamics);
+    ctx.max_speed_m_per_s = world.max_speed_m_per_s();
+    ctx.kinetic_energy_j = world.kinetic_energy_j();
     for (const auto& m : meters) m->on_step(ctx);
     record.write_step(std::move(row), world);
     outcome.steps_done = s + 1;

@@ -10,13 +10,14 @@
 
 namespace tcb {
 
-ThreadTimes read_thread_times() {
-  ThreadTimes t;
+double thread_cpu_ms() {
   timespec ts{};
-  if (clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts) == 0) t.cpu_ms = ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+  return clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts) == 0 ? ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6 : 0.0;
+}
+
+std::int64_t thread_involuntary_switches() {
   rusage usage{};
-  if (getrusage(RUSAGE_THREAD, &usage) == 0) t.involuntary_switches = usage.ru_nivcsw;
-  return t;
+  return getrusage(RUSAGE_THREAD, &usage) == 0 ? usage.ru_nivcsw : 0;
 }
 
 std::vector<int> allowed_cpus() {

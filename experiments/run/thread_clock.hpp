@@ -12,13 +12,11 @@
 
 namespace tcb {
 
-/// A reading of the calling thread's clocks.
-struct ThreadTimes {
-  double cpu_ms = 0.0;                     ///< CPU time of the thread since it started (ms)
-  std::int64_t involuntary_switches = 0;   ///< preemptions of the thread since it started
-};
-
-ThreadTimes read_thread_times();
+/// The thread's CPU time (ms; read inside the handling interval) and its
+/// involuntary switches so far (getrusage: read around the interval, so its
+/// cost stays out of handling_ms).
+double thread_cpu_ms();
+std::int64_t thread_involuntary_switches();
 
 /// The CPUs this process may run on (sched_getaffinity), ascending.
 std::vector<int> allowed_cpus();

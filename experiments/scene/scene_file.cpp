@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "baselines/registry.hpp"
+#include "method/handler/method_settings.hpp"
 #include "experiments/run/provenance.hpp"
 #include "sim/io/atomic_file.hpp"
 #include "experiments/scene/method_settings_reader.hpp"
@@ -112,16 +113,6 @@ std::vector<std::string> split_path(const std::string& path) {
   return parts;
 }
 
-// Escapes a bare word into a TOML basic string.
-std::string toml_string(const std::string& text) {
-  std::string quoted = "\"";
-  for (const char c : text) {
-    if (c == '"' || c == '\\') quoted += '\\';
-    quoted += c;
-  }
-  return quoted + "\"";
-}
-
 void apply_override(toml::table& root, const std::string& assignment, Origins& origins) {
   const std::string origin = "--set " + assignment;
   const std::size_t eq = assignment.find('=');
@@ -137,7 +128,7 @@ void apply_override(toml::table& root, const std::string& assignment, Origins& o
     parsed = toml::parse("value = " + value_text, origin);
   } catch (const toml::parse_error&) {
     try {
-      parsed = toml::parse("value = " + toml_string(value_text), origin);
+      parsed = toml::parse("value = " + format_setting(SettingValue(value_text)), origin);  // a TOML string
     } catch (const toml::parse_error& e) {
       throw InputError(origin, 0, std::string(e.description()));
     }

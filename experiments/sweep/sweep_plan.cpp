@@ -25,6 +25,18 @@ std::string id_part(const std::string& text) {
   return out;
 }
 
+// Budget labels of `key`, each one checked (TableReader::fail names the key's line).
+std::vector<SweepBudget> parse_budgets(TableReader& reader, std::string_view key,
+                                       const std::vector<std::string>& labels) {
+  std::vector<SweepBudget> out;
+  for (const auto& label : labels) {
+    const auto b = parse_sweep_budget(label);
+    if (!b) reader.fail(key, "'" + label + "' is not none, ms:X, work:N (whole), full/K or full-work/K (K > 0)");
+    out.push_back(*b);
+  }
+  return out;
+}
+
 }  // namespace
 
 std::optional<SweepBudget> parse_sweep_budget(const std::string& label) {
@@ -70,6 +82,7 @@ SweepPlan load_sweep_plan(const std::filesystem::path& path) {
       r.fail("scenes", e.what());
     }
   }
+  const std::vector<SweepBudget> budgets = parse_budgets(r, "budgets", budget_labels);
   std::map<std::string, bool> uses_budget;
   // A method entry is a registry name, or a table { name = "every_nth", n = 4 }
   // whose other keys are the method's settings, checked against its schema
@@ -77,7 +90,7 @@ SweepPlan load_sweep_plan(const std::filesystem::path& path) {
   struct MethodEntry {
     std::string name, id;
     std::vector<std::string> sets;
-    std::optional<std::vector<SweepBudget>> budgets;  ///< this entry's own budgets, else the sweep's
+    std::vector<SweepBudget> budgets;  ///< its own `budgets`, else the sweep's
   };
   std::vector<MethodEntry> entries;
   const toml::node* methods = r.node("methods");
@@ -105,12 +118,7 @@ SweepPlan load_sweep_plan(const std::filesystem::path& path) {
       const MethodSettings settings = read_method_settings(mr, *info);
       if (const auto labels = mr.string_list("budgets")) {
         if (labels->empty()) mr.fail("budgets", "must list at least one budget");
-        e.budgets.emplace();
-        for (const auto& label : *labels) {
-          const auto b = parse_sweep_budget(label);
-          if (!b) mr.fail("budgets", "'" + label + "' is not none, ms:X, work:N (whole), full/K or full-work/K (K > 0)");
-          e.budgets->push_back(*b);
-        }
+        e.budgets = parse_budgets(mr, "budgets", *labels);
       }
       mr.finish();
       for (const SettingSpec& spec : info->settings) {  // what differs from the defaults, in schema order
@@ -128,16 +136,9 @@ SweepPlan load_sweep_plan(const std::filesystem::path& path) {
       if (earlier.id == e.id)
         r.fail("methods", "entry " + std::to_string(i) + " repeats an earlier one (same method, same settings)");
     uses_budget[e.id] = info->uses_budget;
+    if (e.budgets.empty()) e.budgets = budgets;
     entries.push_back(e);
   }
-  std::vector<SweepBudget> budgets;
-  for (const auto& label : budget_labels) {
-    const auto b = parse_sweep_budget(label);
-    if (!b) r.fail("budgets", "'" + label + "' is not none, ms:X, work:N (whole), full/K or full-work/K (K > 0)");
-    budgets.push_back(*b);
-  }
-  std::vector<std::vector<SweepBudget>> entry_budgets;  // per method entry
-  for (const MethodEntry& e : entries) entry_budgets.push_back(e.budgets ? *e.budgets : budgets);
   std::vector<std::uint64_t> seeds{0};
   if (const toml::node* n = r.node("seeds")) {
     const toml::array* a = n->as_array();
@@ -190,8 +191,8 @@ SweepPlan load_sweep_plan(const std::filesystem::path& path) {
   r.finish();
 
   bool any_relative = false;
-  for (const auto& list : entry_budgets)
-    for (const SweepBudget& b : list) any_relative = any_relative || b.is_relative();
+  for (const MethodEntry& e : entries)
+    for (const SweepBudget& b : e.budgets) any_relative = any_relative || b.is_relative();
   std::map<std::string, std::size_t> seen;
   for (const auto& scene : scenes)
     for (std::size_t s = 0; s < sets.size(); ++s)
@@ -215,10 +216,9 @@ SweepPlan load_sweep_plan(const std::filesystem::path& path) {
           plan.runs.push_back(run);
         };
         const std::string reference_id = id_part(scene) + "-full-none" + tail;
-        if (any_relative) add(MethodEntry{"full", "full", {}, std::nullopt}, SweepBudget{}, "");  // the reference comes first
-        for (std::size_t m = 0; m < entries.size(); ++m)
-          for (const auto& budget : entry_budgets[m]) {
-            const MethodEntry& method = entries[m];
+        if (any_relative) add(MethodEntry{"full", "full", {}, {}}, SweepBudget{}, "");  // the reference comes first
+        for (const MethodEntry& method : entries)
+          for (const auto& budget : method.budgets) {
             if (!uses_budget[method.id]) {
               add(method, SweepBudget{}, "");
               continue;

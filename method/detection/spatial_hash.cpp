@@ -99,16 +99,20 @@ bool SpatialHash::build_some(std::size_t max_visits) {
   while (m_build_pass < 3) {
     const std::size_t end = n - m_build_cursor > max_visits ? m_build_cursor + max_visits : n;
     max_visits -= end - m_build_cursor;
-    for (std::size_t i = m_build_cursor; i < end; ++i) {
-      const Entry& e = m_entries[i];
-      if (m_build_pass == 0) {
+    if (m_build_pass == 0) {
+      for (std::size_t i = m_build_cursor; i < end; ++i) {
+        const Entry& e = m_entries[i];
         if (m_count[e.bucket] == 0 || m_stamp[e.bucket] != m_epoch) continue;
         m_start[e.bucket] = m_build_next;  // first time met in this pass: allocate
         m_build_next += m_count[e.bucket];
         m_stamp[e.bucket] = m_epoch - 1;  // mark allocated; restored in pass 2
-      } else if (m_build_pass == 1) {
-        m_sorted[m_start[e.bucket]++] = e.item;
-      } else if (m_stamp[e.bucket] != m_epoch) {
+      }
+    } else if (m_build_pass == 1) {
+      for (std::size_t i = m_build_cursor; i < end; ++i) m_sorted[m_start[m_entries[i].bucket]++] = m_entries[i].item;
+    } else {
+      for (std::size_t i = m_build_cursor; i < end; ++i) {
+        const Entry& e = m_entries[i];
+        if (m_stamp[e.bucket] == m_epoch) continue;
         m_stamp[e.bucket] = m_epoch;
         m_start[e.bucket] -= m_count[e.bucket];  // rewind to the range's start
       }

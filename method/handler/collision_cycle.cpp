@@ -36,10 +36,11 @@ void CollisionCycle::begin(const World& world) {
   m_contacts.clear();
   ++m_number;
   m_tasks = 0;
-  if (m_order == WorkOrder::FastestFirst) {
-    enter(Stage::Prioritize, world);
-    return;
-  }
+  if (m_order == WorkOrder::FastestFirst) enter(Stage::Prioritize, world);
+  else enter_detection(world);
+}
+
+void CollisionCycle::enter_detection(const World& world) {
   enter(m_mode == DetectionMode::SpatialHash ? Stage::HashTets : Stage::QueryPoints, world);
   if (m_stage == Stage::HashTets && m_granularity.fine()) m_detector.begin_hash();
 }
@@ -144,21 +145,12 @@ bool CollisionCycle::scan_layer_some(const World& world, std::size_t max_contact
 }
 
 void CollisionCycle::build_next_layer(const World& world) {
-  ++m_layer;
-  std::vector<std::int32_t> next;
-  for (std::size_t i = 0; i < m_contacts.size(); ++i) {
-    const Contact& c = m_contacts[i];
-    if (c.depth_source == DepthSource::None || c.layer != m_layer - 1) continue;
-    const auto& adjacency = world.bodies[c.object].mesh->vertex_neighbours;
-    for (const std::int32_t* j = adjacency.begin(c.vertex); j != adjacency.end(c.vertex); ++j) {
-      const std::int32_t n = m_lookup[c.object][*j];
-      if (n < 0 || m_contacts[n].other != c.other || m_contacts[n].depth_source != DepthSource::None) continue;
-      next.push_back(n);
-    }
-  }
-  std::sort(next.begin(), next.end());
-  next.erase(std::unique(next.begin(), next.end()), next.end());
-  m_layer_items = std::move(next);
+  // The paper's granularity: the whole scan in the task that ends a layer,
+  // its points in index order.
+  start_layer_scan();
+  scan_layer_some(world, m_contacts.size());
+  std::sort(m_layer_items.begin(), m_layer_items.end());
+  m_stage = Stage::Propagate;
   m_cursor = 0;
 }
 
@@ -170,8 +162,7 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
       case Stage::Prioritize:
         prioritize(world);
         work = work::kPrioritize * m_queries.size();
-        enter(m_mode == DetectionMode::SpatialHash ? Stage::HashTets : Stage::QueryPoints, world);
-        if (m_stage == Stage::HashTets && m_granularity.fine()) m_detector.begin_hash();
+        enter_detection(world);
         break;
       case Stage::HashTets:
         if (!m_granularity.fine()) {

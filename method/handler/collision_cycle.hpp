@@ -116,9 +116,8 @@ class CollisionCycle {
 
   CollisionCycle(const World& world, CollisionSettings settings, DetectionMode mode = DetectionMode::SpatialHash,
                  CycleSchedule schedule = {});
-  /// The motion bounds of widen_stale (m): since the tet hash, and the surface hash, began.
+  /// The motion bound of widen_stale (m) since the tet hash began.
   double tet_margin_m() const { return m_tet_margin_m; }
-  double surface_margin_m() const { return m_surface_margin_m; }
 
   /// Starts a new cycle (the previous one's results are dropped).
   void begin(const World& world);
@@ -145,6 +144,7 @@ class CollisionCycle {
   std::optional<Contact> detect(const World& world, std::int32_t body, std::int32_t vertex, std::uint64_t& work);
   void build_next_layer(const World& world);
   void prioritize(const World& world);
+  void enter_detection(const World& world);
   void grow_margins(const World& world);
   void restore_index_order();
   void start_layer_scan();

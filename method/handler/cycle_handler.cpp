@@ -32,6 +32,15 @@ void CycleHandler::apply_cycle_forces(World& world, StepReport& report) const {
   report.depth_fallback = m_cycle->depth_fallback();
 }
 
+void CycleHandler::apply_depth_contact(World& world, const Contact& c) const {
+  const CollisionSettings& s = m_cycle->settings();
+  if (s.response_mode == ResponseMode::Explicit) {
+    apply_contact_force(world, c, penalty_force(world, c, s.response(c.object, c.other), s.dt_s));
+  } else {
+    add_contact_link(world, c, s.response(c.object, c.other), s.dt_s);
+  }
+}
+
 void CycleHandler::apply_depth_contact(World& world, const Contact& c, const Vec3& explicit_force_n) const {
   const CollisionSettings& s = m_cycle->settings();
   if (s.response_mode == ResponseMode::Explicit) apply_contact_force(world, c, explicit_force_n);

@@ -35,6 +35,9 @@ class CycleHandler : public CollisionHandler {
   /// under explicit response; under implicit response a link of the contact's
   /// depth (and its friction as a force).
   void apply_depth_contact(World& world, const Contact& contact, const Vec3& explicit_force_n) const;
+  /// The same with the contact's penalty force computed now, and only where
+  /// it is used (explicit response; the implicit link needs only the depth).
+  void apply_depth_contact(World& world, const Contact& contact) const;
 
   CollisionCycle& mutable_cycle() { return *m_cycle; }
 

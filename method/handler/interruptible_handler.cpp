@@ -105,7 +105,6 @@ StepReport InterruptibleHandler::step(World& world, Budget& budget) {
     m_applied[c.object][c.vertex] = m_step;  // decided here, so the history loop below leaves it alone
     if (c.separated) continue;               // left the object since detection: no force
     if (c.depth_source != DepthSource::None) {
-      const ResponseParams& params = cycle().settings().response(c.object, c.other);
       if (m_stale == Stale::Track) {
         // The depth carried from the step it was computed in to the current
         // positions (unchanged within that step), and remembered with its r0.
@@ -116,10 +115,11 @@ StepReport InterruptibleHandler::step(World& world, Budget& budget) {
         // contact that has not moved gets full's force whatever its depth (its
         // damper may push even at depth 0), so no budget stays bit for bit full.
         if (!(now.depth_m > 0.0) && contact_offset_m(world, c) != c.depth_offset_m) continue;
-        apply_depth_contact(world, now, penalty_force(world, now, params, cycle().settings().dt_s));
+        apply_depth_contact(world, now);
+      } else if (i < with_force) {
+        apply_depth_contact(world, c, c.force_n);
       } else {
-        const Vec3 f = i < with_force ? c.force_n : penalty_force(world, c, params, cycle().settings().dt_s);
-        apply_depth_contact(world, c, f);
+        apply_depth_contact(world, c);  // the cycle has not reached its force yet: computed now
       }
       ++report.exact_forces;
       report.exact_points.emplace_back(c.object, c.vertex);

@@ -3,7 +3,7 @@
 /// handling. `interruptible`, the ablation `interruptible_no_extrapolation`,
 /// and our variants `interruptible_tracked` (below) and
 /// `interruptible_prioritized` (fastest points first, collision_cycle.hpp).
-/// The settings fine_tasks and reserve_apply (InterruptibleOptions) are ours
+/// The settings fine_tasks, reserve_apply and widen_stale (InterruptibleOptions) are ours
 /// too; by default every one of them keeps the paper's schedule.
 ///
 /// Every step works on the current collision cycle until the step's budget

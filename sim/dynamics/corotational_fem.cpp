@@ -157,13 +157,6 @@ void CorotationalFem::multiply(const Eigen::VectorXd& v, Eigen::VectorXd& out) c
 
 Eigen::VectorXd CorotationalFem::diagonal() const { return m_system.diagonal(); }
 
-void CorotationalFem::end_linear_step(std::span<Vec3> x, std::span<Vec3> v, const Eigen::VectorXd& v_new, double dt,
-                                      int iterations, bool converged) {
-  m_last_iterations = iterations;
-  m_last_converged = converged;
-  take_velocities(x, v, v_new, dt);
-}
-
 void CorotationalFem::step(std::span<Vec3> x, std::span<Vec3> v, std::span<const Vec3> f_ext, double dt) {
   begin_linear_step(x, v, f_ext, dt);
   Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper, Eigen::DiagonalPreconditioner<double>> cg;

@@ -30,8 +30,6 @@ class CorotationalFem final : public ElasticModel {
   double elastic_energy_j(std::span<const Vec3> x_m) const override;
   void elastic_forces(std::span<const Vec3> x_m, std::span<Vec3> f_n) const override;
   const std::vector<double>& vertex_masses_kg() const override { return m_mass_kg; }
-  int last_solver_iterations() const override { return m_last_iterations; }
-  bool last_solve_converged() const override { return m_last_converged; }
   bool begin_linear_step(std::span<const Vec3> x_m, std::span<const Vec3> v_m_per_s, std::span<const Vec3> f_ext_n,
                          double dt_s) override;
   void multiply(const Eigen::VectorXd& v, Eigen::VectorXd& out) const override;
@@ -39,8 +37,6 @@ class CorotationalFem final : public ElasticModel {
   Eigen::VectorXd diagonal() const override;
   double solver_tolerance() const override { return m_material.cg_tolerance; }
   int solver_max_iterations() const override { return m_material.cg_max_iterations; }
-  void end_linear_step(std::span<Vec3> x_m, std::span<Vec3> v_m_per_s, const Eigen::VectorXd& v_new, double dt_s,
-                       int iterations, bool converged) override;
 
  private:
   struct Element {
@@ -65,8 +61,6 @@ class CorotationalFem final : public ElasticModel {
   std::vector<std::array<int, 48>> m_block_slots;
   std::vector<std::array<int, 3>> m_diagonal_slots;
   Eigen::VectorXd m_rhs, m_velocity;
-  int m_last_iterations = 0;
-  bool m_last_converged = true;
 };
 
 }  // namespace tcb

@@ -32,4 +32,11 @@ void take_velocities(std::span<Vec3> x, std::span<Vec3> v, const Eigen::VectorXd
   }
 }
 
+void ElasticModel::end_linear_step(std::span<Vec3> x, std::span<Vec3> v, const Eigen::VectorXd& v_new, double dt,
+                                   int iterations, bool converged) {
+  m_last_iterations = iterations;
+  m_last_converged = converged;
+  take_velocities(x, v, v_new, dt);
+}
+
 }  // namespace tcb

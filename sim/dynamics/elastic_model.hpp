@@ -28,9 +28,9 @@ class ElasticModel {
   virtual const std::vector<double>& vertex_masses_kg() const = 0;
   /// Iterations of the last linear solve: the model's own, or those a coupled
   /// contact solve reported to it (0 for an explicit step).
-  virtual int last_solver_iterations() const { return 0; }
+  int last_solver_iterations() const { return m_last_iterations; }
   /// False when the last linear solve stopped at its iteration limit.
-  virtual bool last_solve_converged() const { return true; }
+  bool last_solve_converged() const { return m_last_converged; }
 
   // The step as a linear system in the new velocities, A v+ = b (3 entries
   // per vertex), so that contact terms coupling bodies can join one solve
@@ -47,9 +47,21 @@ class ElasticModel {
   /// Solver tolerance (relative residual) and iteration limit of the model.
   virtual double solver_tolerance() const = 0;
   virtual int solver_max_iterations() const = 0;
-  /// Takes the solved velocities: v = v+, x += dt v+ (and the solver's record).
-  virtual void end_linear_step(std::span<Vec3> x_m, std::span<Vec3> v_m_per_s, const Eigen::VectorXd& v_new,
-                               double dt_s, int iterations, bool converged) = 0;
+  /// Takes the solved velocities: v = v+, x += dt v+ (take_velocities), and
+  /// records the solver's iterations and convergence.
+  void end_linear_step(std::span<Vec3> x_m, std::span<Vec3> v_m_per_s, const Eigen::VectorXd& v_new, double dt_s,
+                       int iterations, bool converged);
+
+ protected:
+  /// The solver record of a step without a linear solve (explicit integrators).
+  void record_explicit_step() {
+    m_last_iterations = 0;
+    m_last_converged = true;
+  }
+
+ private:
+  int m_last_iterations = 0;
+  bool m_last_converged = true;
 };
 
 /// The end of a linear step: v = v_new (3 entries per vertex), x += dt v.

@@ -77,8 +77,7 @@ void MassSpring::accelerations(std::span<const Vec3> x, std::span<const Vec3> v,
 }
 
 void MassSpring::step(std::span<Vec3> x, std::span<Vec3> v, std::span<const Vec3> f_ext, double dt) {
-  m_last_iterations = 0;
-  m_last_converged = true;
+  record_explicit_step();
   const std::size_t n = x.size();
   for (std::size_t i = 0; i < n; ++i)
     if (m_mass_kg[i] == 0.0) v[i] = Vec3::Zero();  // massless vertices never move
@@ -119,13 +118,6 @@ bool MassSpring::begin_linear_step(std::span<const Vec3> x, std::span<const Vec3
 
 void MassSpring::multiply(const Eigen::VectorXd& v, Eigen::VectorXd& out) const {
   out = m_diagonal.cwiseProduct(v);
-}
-
-void MassSpring::end_linear_step(std::span<Vec3> x, std::span<Vec3> v, const Eigen::VectorXd& v_new, double dt,
-                                 int iterations, bool converged) {
-  m_last_iterations = iterations;
-  m_last_converged = converged;
-  take_velocities(x, v, v_new, dt);
 }
 
 }  // namespace tcb

@@ -41,10 +41,6 @@ class MassSpring final : public ElasticModel {
   Eigen::VectorXd diagonal() const override { return m_diagonal; }
   double solver_tolerance() const override { return m_material.cg_tolerance; }
   int solver_max_iterations() const override { return m_material.cg_max_iterations; }
-  void end_linear_step(std::span<Vec3> x_m, std::span<Vec3> v_m_per_s, const Eigen::VectorXd& v_new, double dt_s,
-                       int iterations, bool converged) override;
-  int last_solver_iterations() const override { return m_last_iterations; }
-  bool last_solve_converged() const override { return m_last_converged; }
 
  private:
   struct Spring {
@@ -65,8 +61,6 @@ class MassSpring final : public ElasticModel {
   std::vector<double> m_mass_kg;
   std::vector<Vec3> m_force, m_acceleration, m_half_velocity;
   Eigen::VectorXd m_rhs, m_diagonal;  // the linear step: A = diag(m_diagonal)
-  int m_last_iterations = 0;          // of a coupled contact solve; 0 after an explicit step
-  bool m_last_converged = true;
 };
 
 }  // namespace tcb

@@ -36,31 +36,11 @@ PointSet colliding_points(const std::string& method, const test::TestScene& scen
   return points;
 }
 
-std::vector<std::pair<std::string, test::TestScene>> scenes() {
-  const std::string data = TCBENCH_DATA_DIR;
-  std::vector<std::pair<std::string, test::TestScene>> s;
-  s.emplace_back("two overlapping boxes",
-                 test::scene_of({{"a", "box:size=0.2x0.2x0.2,cells=3x3x3"},
-                                 {"b", "box:size=0.2x0.2x0.2,cells=4x2x3", Vec3(0.07, 0.05, 0.03)}}));
-  s.emplace_back("plate stack, exactly face on face and vertex on vertex",
-                 test::scene_of({{"plate", "box:size=0.3x0.02x0.3,cells=4x2x4", Vec3::Zero(), false, false, 1.0, 4}}));
-  s.emplace_back("sphere into torus", test::scene_of({{"torus", "meshes/torus_coarse.mesh"},
-                                                      {"sphere", "meshes/sphere_fine.mesh", Vec3(0.1, 0.02, 0.0),
-                                                       false, false, 0.5}},
-                                                     data));
-  s.emplace_back("passive obstacle",
-                 test::scene_of({{"floor", "box:size=1x0.1x1,cells=5x1x5", Vec3::Zero(), true},
-                                 {"cube", "box:size=0.2x0.2x0.2,cells=3x3x3", Vec3(0.1, 0.12, 0.0)}}));
-  s.emplace_back("self-collision of a folded pair",
-                 test::scene_of({{"self", "box:size=0.2x0.2x0.2,cells=2x2x2", Vec3::Zero(), false, true},
-                                 {"other", "box:size=0.2x0.2x0.2,cells=2x2x2", Vec3(0.05, 0.05, 0.05)}}));
-  return s;
-}
 
 }  // namespace
 
 TEST_CASE("every registered method finds exactly brute_force's colliding points", "[handler][registry]") {
-  for (const auto& [scene_name, scene] : scenes()) {
+  for (const auto& [scene_name, scene] : test::collision_scenes()) {
     for (int steps_before : {0, 20}) {
       const PointSet expected = colliding_points("brute_force", scene, steps_before);
       INFO(scene_name << " after " << steps_before << " steps: " << expected.size() << " colliding points");

@@ -2,6 +2,7 @@
 // Small scenes for the collision tests, built in code.
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "method/handler/collision_settings.hpp"
@@ -54,6 +55,29 @@ inline World build_world(const TestScene& scene) { return tcb::build_world(scene
 /// The collision settings a run would resolve for this scene's world.
 inline CollisionSettings settings_of(const World& world, const TestScene& scene) {
   return resolve_collision_settings(world, scene.collision, scene.world.dt_s);
+}
+
+/// Small scenes with collisions of every kind the detection must get right,
+/// named: overlapping bodies, the face-on-face plate stack, a real mesh pair,
+/// a passive obstacle, self-collision. The detection tests run over all of them.
+inline std::vector<std::pair<std::string, TestScene>> collision_scenes() {
+  const std::string data = TCBENCH_DATA_DIR;
+  std::vector<std::pair<std::string, TestScene>> s;
+  s.emplace_back("two overlapping boxes",
+                 scene_of({{"a", "box:size=0.2x0.2x0.2,cells=3x3x3"},
+                           {"b", "box:size=0.2x0.2x0.2,cells=4x2x3", Vec3(0.07, 0.05, 0.03)}}));
+  s.emplace_back("plate stack, exactly face on face and vertex on vertex",
+                 scene_of({{"plate", "box:size=0.3x0.02x0.3,cells=4x2x4", Vec3::Zero(), false, false, 1.0, 4}}));
+  s.emplace_back("sphere into torus",
+                 scene_of({{"torus", "meshes/torus_coarse.mesh"},
+                           {"sphere", "meshes/sphere_fine.mesh", Vec3(0.1, 0.02, 0.0), false, false, 0.5}},
+                          data));
+  s.emplace_back("passive obstacle", scene_of({{"floor", "box:size=1x0.1x1,cells=5x1x5", Vec3::Zero(), true},
+                                               {"cube", "box:size=0.2x0.2x0.2,cells=3x3x3", Vec3(0.1, 0.12, 0.0)}}));
+  s.emplace_back("self-collision of a folded pair",
+                 scene_of({{"self", "box:size=0.2x0.2x0.2,cells=2x2x2", Vec3::Zero(), false, true},
+                           {"other", "box:size=0.2x0.2x0.2,cells=2x2x2", Vec3(0.05, 0.05, 0.05)}}));
+  return s;
 }
 
 }  // namespace tcb::test

@@ -44,26 +44,12 @@ std::pair<Found, int> cycle_in_single_tasks(const test::TestScene& scene, Detect
   return {found(cycle), calls};
 }
 
-std::vector<std::pair<std::string, test::TestScene>> scenes() {
-  const std::string data = TCBENCH_DATA_DIR;
-  std::vector<std::pair<std::string, test::TestScene>> s;
-  s.emplace_back("two overlapping boxes",
-                 test::scene_of({{"a", "box:size=0.2x0.2x0.2,cells=3x3x3"},
-                                 {"b", "box:size=0.2x0.2x0.2,cells=4x2x3", Vec3(0.07, 0.05, 0.03)}}));
-  s.emplace_back("plate stack, face on face",
-                 test::scene_of({{"plate", "box:size=0.3x0.02x0.3,cells=4x2x4", Vec3::Zero(), false, false, 1.0, 3}}));
-  s.emplace_back("sphere into torus", test::scene_of({{"torus", "meshes/torus_coarse.mesh"},
-                                                      {"sphere", "meshes/sphere_fine.mesh", Vec3(0.1, 0.02, 0.0),
-                                                       false, false, 0.5}},
-                                                     data));
-  return s;
-}
 
 }  // namespace
 
 TEST_CASE("fine tasks find exactly the paper's contacts and depths, and brute force's points, for every piece size",
           "[cycle][granularity]") {
-  for (const auto& [name, scene] : scenes()) {
+  for (const auto& [name, scene] : test::collision_scenes()) {
     INFO(name);
     const auto [paper, paper_calls] = cycle_in_single_tasks(scene, DetectionMode::SpatialHash, {});
     const auto [brute, brute_calls] = cycle_in_single_tasks(scene, DetectionMode::BruteForce, {});
@@ -82,7 +68,7 @@ TEST_CASE("fine tasks find exactly the paper's contacts and depths, and brute fo
 }
 
 TEST_CASE("a ticking clock interrupts the tet hashing and resumes it next step", "[cycle][granularity]") {
-  const test::TestScene scene = scenes()[0].second;
+  const test::TestScene scene = test::collision_scenes()[0].second;
   World world = build_world(scene);
   const CollisionSettings settings = test::settings_of(world, scene);
   CollisionCycle fine(world, settings, DetectionMode::SpatialHash, {.granularity = {4, 8, 4}});
@@ -141,7 +127,7 @@ TEST_CASE("widened queries find what moved since it was hashed; the paper's quer
   // Hash and build (two tasks of an all-in-one fine cycle), then move box b
   // by 0.45 cell (under the margin's cap of half a cell) as one step of 1 ms
   // would, then query: the hash holds b's tets where they were.
-  const test::TestScene scene = scenes()[0].second;
+  const test::TestScene scene = test::collision_scenes()[0].second;
   const auto points_after_move = [&](bool widen) {
     World world = build_world(scene);
     CollisionCycle cycle(world, test::settings_of(world, scene), DetectionMode::SpatialHash,
@@ -179,6 +165,7 @@ TEST_CASE("widened queries find what moved since it was hashed; the paper's quer
   const auto [widened, truth] = points_after_move(true);
   const auto [paper, same_truth] = points_after_move(false);
   REQUIRE(!truth.empty());
+  CHECK(same_truth == truth);
   CHECK(widened == truth);
   CHECK(paper.size() < truth.size());  // stale cells and AABBs hide some
   for (const auto& p : paper) CHECK(truth.count(p) == 1);  // but what it finds is true
