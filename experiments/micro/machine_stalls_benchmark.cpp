@@ -1,0 +1,72 @@
+// The machine's own floor under microsecond budgets: how often a thread that
+// does nothing but read the clock loses the CPU for a while without being
+// switched out (timer and other interrupts, hypervisor exits). Such a stall in
+// the work a handler does after its last budget check is overshoot no method
+// can avoid, so the issue-12 target "overshoot p99 <= 1 % of the budget" is
+// only reachable where stalls longer than 1 % of the budget are rarer than
+// 1 % of steps in that post-check interval.
+//   build/release/experiments/micro/micro_machine_stalls
+// Each iteration spins for one window of W µs (the argument: budgets of the
+// committed scenes at full/10 and full/3, and 1 ms) and records the longest
+// gap between two consecutive clock reads. Counters, over all windows:
+//   stalled_1pct   share of windows holding a gap longer than 1 % of W
+//   stalled_10us   share of windows holding a gap longer than 10 µs
+//   stalls_10us_per_s  gaps longer than 10 µs per second of spinning
+//   longest_gap_us the longest gap seen
+// The second family reads the thread's CPU clock instead of the wall clock:
+// if it shows the same stalls, they are billed to the thread and CPU-time
+// overshoot cannot tell them from the method's own (issue 19's verdict).
+#include <benchmark/benchmark.h>
+
+#include <time.h>
+
+#include <algorithm>
+#include <cstdint>
+
+namespace {
+
+double read_us(clockid_t clock) {
+  timespec t{};
+  clock_gettime(clock, &t);
+  return static_cast<double>(t.tv_sec) * 1e6 + static_cast<double>(t.tv_nsec) * 1e-3;
+}
+
+void run_windows(benchmark::State& state, clockid_t clock) {
+  const double window_us = static_cast<double>(state.range(0));
+  std::int64_t windows = 0, stalled_1pct = 0, stalled_10us = 0, stalls_10us = 0;
+  double spun_us = 0.0, longest_us = 0.0;
+  for (auto _ : state) {
+    const double start = read_us(clock);
+    double previous = start, now = start, longest = 0.0;
+    while (now - start < window_us) {
+      now = read_us(clock);
+      const double gap = now - previous;
+      longest = std::max(longest, gap);
+      stalls_10us += gap > 10.0;
+      previous = now;
+    }
+    ++windows;
+    spun_us += now - start;
+    stalled_1pct += longest > 0.01 * window_us;
+    stalled_10us += longest > 10.0;
+    longest_us = std::max(longest_us, longest);
+  }
+  const double n = static_cast<double>(std::max<std::int64_t>(windows, 1));
+  state.counters["stalled_1pct"] = static_cast<double>(stalled_1pct) / n;
+  state.counters["stalled_10us"] = static_cast<double>(stalled_10us) / n;
+  state.counters["stalls_10us_per_s"] = spun_us > 0 ? static_cast<double>(stalls_10us) / (spun_us * 1e-6) : 0.0;
+  state.counters["longest_gap_us"] = longest_us;
+}
+
+void BM_WallClockWindow(benchmark::State& state) { run_windows(state, CLOCK_MONOTONIC); }
+void BM_ThreadCpuClockWindow(benchmark::State& state) { run_windows(state, CLOCK_THREAD_CPUTIME_ID); }
+
+// 47, 110, 160, 370 µs: haptic_probe and sneaker_grass at full/10 and full/3;
+// 1000 µs: the haptic probe's 1 ms budget. MinTime so every window count is
+// in the thousands.
+BENCHMARK(BM_WallClockWindow)->Arg(47)->Arg(110)->Arg(160)->Arg(370)->Arg(1000)->MinTime(2.0)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_ThreadCpuClockWindow)->Arg(47)->Arg(160)->Arg(1000)->MinTime(2.0)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
