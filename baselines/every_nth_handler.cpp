@@ -2,7 +2,7 @@
 
 namespace tcb {
 
-StepReport EveryNthHandler::step(World& world, Budget& budget) {
+StepReport EveryNthHandler::schedule_step(World& world, Budget& budget) {
   StepReport report;
   const bool run_cycle = m_step++ % m_n == 0;
   if (run_cycle) {
@@ -11,7 +11,7 @@ StepReport EveryNthHandler::step(World& world, Budget& budget) {
   }
   report.cycle = cycle().number();
   if (run_cycle || m_hold) {
-    apply_cycle_forces(world, report);
+    apply_cycle_forces(world, report, run_cycle ? ForceSource::Computed : ForceSource::Held);
     if (!run_cycle) {  // held forces are not computed from this step's depths
       report.estimated_forces = report.exact_forces;
       report.exact_forces = 0;

@@ -14,7 +14,7 @@ namespace tcb {
 class EveryNthHandler final : public CycleHandler {
  public:
   EveryNthHandler(std::int64_t n, bool hold_forces) : m_n(n), m_hold(hold_forces) {}
-  StepReport step(World& world, Budget& budget) override;
+  StepReport schedule_step(World& world, Budget& budget) override;
 
  private:
   std::int64_t m_n;

@@ -2,7 +2,7 @@
 
 namespace tcb {
 
-StepReport FullHandler::step(World& world, Budget& budget) {
+StepReport FullHandler::schedule_step(World& world, Budget& budget) {
   StepReport report;
   report.work_units = run_whole_cycle(world, budget);
   report.cycle = cycle().number();

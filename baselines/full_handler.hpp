@@ -12,7 +12,7 @@ namespace tcb {
 class FullHandler final : public CycleHandler {
  public:
   using CycleHandler::CycleHandler;
-  StepReport step(World& world, Budget& budget) override;
+  StepReport schedule_step(World& world, Budget& budget) override;
 };
 
 }  // namespace tcb

@@ -1,7 +1,9 @@
 // tcbench check THRESHOLDS.toml DIR: bounds on run summaries, for CI.
+#include <filesystem>
 #include <iostream>
 
 #include "experiments/check/thresholds.hpp"
+#include "sim/io/input_error.hpp"
 #include "experiments/cli/command.hpp"
 
 namespace tcb::cli {
@@ -28,6 +30,9 @@ class CheckCommand final : public Command {
 
   int execute() override {
     const std::vector<Threshold> thresholds = load_thresholds(m_file);  // the rows point into it
+    // A results directory that is not there is bad input, not a failed check.
+    if (!std::filesystem::is_directory(m_dir))
+      throw InputError(m_dir, 0, std::filesystem::exists(m_dir) ? "is not a directory" : "no such results directory");
     const std::vector<CheckRow> rows = check_thresholds(thresholds, m_dir);
     std::cout << format_check_rows(rows, m_file);
     return check_exit_status(rows, m_strict_timing);

@@ -1,15 +1,27 @@
 // tcbench run SCENE: one scene, one method, results in one directory.
 #include <fmt/format.h>
 
+#include <charconv>
 #include <iostream>
 
 #include "experiments/cli/command.hpp"
 #include "experiments/cli/progress_line.hpp"
 #include "experiments/run/run_scene.hpp"
 #include "experiments/scene/scene_file.hpp"
+#include "sim/io/input_error.hpp"
 
 namespace tcb::cli {
 namespace {
+
+// A seed as typed: digits only, within 64 bits (no sign, no wrap-around).
+std::uint64_t parse_seed(const std::string& text) {
+  std::uint64_t value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos || error != std::errc() ||
+      end != text.data() + text.size())
+    throw InputError("--seed", 0, "'" + text + "' is not a whole number from 0 to 18446744073709551615");
+  return value;
+}
 
 class RunCommand final : public Command {
  public:
@@ -24,10 +36,11 @@ class RunCommand final : public Command {
     app->add_option("--method", m_options.method, "Collision handling method (tcbench list methods)")
         ->capture_default_str();
     auto* wall = app->add_option("--budget-ms", m_budget_ms,
-                                 "Wall-clock budget per step for collision handling (ms), polled at interruption points")
-                     ->check(CLI::NonNegativeNumber);
+                                 "Wall-clock budget per step for collision handling (ms, a plain decimal >= 0), "
+                                 "polled at interruption points");
     auto* work = app->add_option("--budget-work", m_budget_work,
-                                 "Budget per step in work units (bit-identical on every machine)");
+                                 "Budget per step in work units (a whole number, 0 .. 2^53; bit-identical on every "
+                                 "machine)");
     wall->excludes(work);
     app->add_option("--oracle", m_oracle,
                     "When the exact oracle runs: off, every, or every:K (its time is oracle_ms, never handling)")
@@ -35,16 +48,28 @@ class RunCommand final : public Command {
     app->add_option("--oracle-volume", m_overlap,
                     "When the exact overlap volume is computed: off, every or every:K (default: with --oracle; "
                     "corefinement costs ~30 ms per overlapping pair)");
+    app->add_option("--force-reference", m_force_reference,
+                    "When a shadow full cycle measures the force error: off, every or every:K (its time is "
+                    "reference_ms, never handling)")
+        ->capture_default_str();
     app->add_option("--budget-label", m_options.budget_label,
                     "How the budget was asked for, recorded in run.json (sweeps pass e.g. full/3)");
     app->add_option("--steps", m_steps, "Number of steps (default: the scene's)")->check(CLI::NonNegativeNumber);
-    app->add_option("--seed", m_options.seed, "Seed, recorded in run.json")->capture_default_str();
+    app->add_option("--seed", m_seed, "Seed (a whole number, 0 .. 2^64-1): draws the scene's [perturb] offsets")
+        ->capture_default_str();
     app->add_option("--set", m_options.overrides,
                     "Override a scene key, e.g. scene.dt=0.002, or a method setting, e.g. method.every_nth.n=4 "
                     "(repeatable; `tcbench list methods` lists the settings)");
     app->add_option("--record", m_options.record_every,
                     "Write a ParaView frame (DIR/frames/*.vtu, DIR/frames.pvd) every N steps")
         ->check(CLI::PositiveNumber);
+    app->add_option("--trajectory", m_options.trajectory_every,
+                    "Write every body's state to DIR/trajectory.bin every N steps (float32), for runs that "
+                    "take this one as --reference")
+        ->check(CLI::PositiveNumber);
+    app->add_option("--reference", m_options.reference_dir,
+                    "A reference run's directory (made with --trajectory): divergence from it, per recorded step "
+                    "(summary: divergence)");
     app->add_option("--out", m_out, "Result directory (default: results/runs/SCENE-METHOD)");
     app->add_option("--pin", m_pin,
                     "Pin the handling thread to this CPU (recorded in run.json; exit 2 when not allowed here)")
@@ -58,9 +83,23 @@ class RunCommand final : public Command {
     if (m_steps >= 0) m_options.steps = m_steps;
     if (m_pin >= 0) m_options.pin_cpu = m_pin;
     m_options.oracle = parse_oracle_schedule(m_oracle);
+    m_options.force_reference = parse_oracle_schedule(m_force_reference, "--force-reference");
     if (app->count("--oracle-volume")) m_options.overlap = parse_oracle_schedule(m_overlap, "--oracle-volume");
-    if (app->count("--budget-ms")) m_options.budget = {BudgetKind::WallMs, m_budget_ms};
-    if (app->count("--budget-work")) m_options.budget = {BudgetKind::Work, static_cast<double>(m_budget_work)};
+    // Parsed here, as text, so nothing is silently rewritten: CLI11 would turn
+    // -5 or 2^64-1 into work:0 and accept "nan" milliseconds.
+    if (app->count("--budget-ms")) {
+      const auto spec = BudgetSpec::parse("ms:" + m_budget_ms);
+      if (!spec) throw InputError("--budget-ms", 0, "'" + m_budget_ms + "' is not a plain decimal number of milliseconds >= 0 (e.g. 4.5)");
+      m_options.budget = *spec;
+    }
+    if (app->count("--budget-work")) {
+      const auto spec = BudgetSpec::parse("work:" + m_budget_work);
+      if (!spec)
+        throw InputError("--budget-work", 0,
+                         "'" + m_budget_work + "' is not a whole number of work units from 0 to 9007199254740992 (2^53)");
+      m_options.budget = *spec;
+    }
+    m_options.seed = parse_seed(m_seed);
     m_options.out_dir = m_out.empty() ? std::filesystem::path("results/runs") / (scene.name + "-" + m_options.method)
                                       : std::filesystem::path(m_out);
     m_options.argv = argv;
@@ -83,9 +122,8 @@ class RunCommand final : public Command {
   std::string m_scene, m_out;
   std::int64_t m_steps = -1;
   int m_pin = -1;
-  std::string m_oracle = "off", m_overlap;
-  double m_budget_ms = 0.0;
-  std::uint64_t m_budget_work = 0;
+  std::string m_oracle = "off", m_overlap, m_force_reference = "off";
+  std::string m_budget_ms, m_budget_work, m_seed = "0";
   bool m_quiet = false;
   RunOptions m_options;
 };

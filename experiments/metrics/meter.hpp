@@ -20,6 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -54,6 +55,11 @@ struct RunSetup {
   OracleSchedule oracle;   ///< inside sets, depths, triangle pairs
   OracleSchedule overlap;  ///< exact overlap volume (corefinement)
   std::int64_t steps_total = 0;
+  OracleSchedule force_reference{};  ///< shadow full cycles (force_reference_meter.hpp)
+  /// The collision settings the run resolved (null: none, e.g. in tests).
+  const CollisionSettings* collision = nullptr;
+  /// A reference run's directory (--reference): divergence_meter.hpp. Empty: none.
+  std::filesystem::path reference_dir{};
 };
 
 /// One step as the meters see it.

@@ -1,7 +1,9 @@
 #include "experiments/metrics/meters.hpp"
 
 #include "experiments/metrics/contact_solve_meter.hpp"
+#include "experiments/metrics/divergence_meter.hpp"
 #include "experiments/metrics/dynamics_meter.hpp"
+#include "experiments/metrics/force_reference_meter.hpp"
 #include "experiments/metrics/handling_meter.hpp"
 #include "experiments/metrics/jitter.hpp"
 #include "experiments/metrics/latency.hpp"
@@ -9,6 +11,8 @@
 #include "experiments/metrics/probe_force_meter.hpp"
 #include "experiments/metrics/settled_meter.hpp"
 #include "experiments/metrics/stability_meter.hpp"
+#include "experiments/metrics/stage_meter.hpp"
+#include "experiments/metrics/step_cost_meter.hpp"
 #include "experiments/metrics/top_centre_meter.hpp"
 #include "experiments/metrics/tunneling_meter.hpp"
 #include "experiments/metrics/timing_meter.hpp"
@@ -25,6 +29,10 @@ std::vector<std::unique_ptr<Meter>> make_meters(const RunSetup& run) {
   meters.push_back(std::make_unique<LatencyMeter>(run));
   meters.push_back(std::make_unique<TunnelingMeter>(run));
   meters.push_back(std::make_unique<DynamicsMeter>(run));
+  meters.push_back(std::make_unique<StepCostMeter>());
+  meters.push_back(std::make_unique<StageMeter>());
+  meters.push_back(std::make_unique<ForceReferenceMeter>(run));
+  meters.push_back(std::make_unique<DivergenceMeter>(run));
   meters.push_back(std::make_unique<StabilityMeter>(run));
   meters.push_back(std::make_unique<JitterMeter>(run));
   meters.push_back(std::make_unique<TopCentreMeter>(run));

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <fstream>
 #include <map>
 
@@ -34,12 +35,32 @@ std::string csv_cell(const std::string& text) {
 
 }  // namespace
 
+namespace {
+
+// steps.csv holds a header and `steps` rows of the header's width.
+bool steps_csv_agrees(const std::filesystem::path& file, std::int64_t steps) {
+  std::ifstream in(file);
+  std::string line;
+  if (!in || !std::getline(in, line) || line.rfind("step,", 0) != 0) return false;
+  const auto width = std::count(line.begin(), line.end(), ',');
+  std::int64_t rows = 0;
+  while (std::getline(in, line)) {
+    if (std::count(line.begin(), line.end(), ',') != width) return false;
+    ++rows;
+  }
+  return rows == steps;
+}
+
+}  // namespace
+
 std::optional<Json> read_complete_run(const std::filesystem::path& run_dir) {
   std::ifstream in(run_dir / "run.json");
   if (!in) return std::nullopt;
   try {
     Json j = Json::parse(in);
-    if (j.contains("summary") && j.contains("status")) return j;
+    if (j.contains("summary") && j.contains("status") && j.contains("steps") && j["steps"].is_number_integer() &&
+        steps_csv_agrees(run_dir / "steps.csv", j["steps"].get<std::int64_t>()))
+      return j;
   } catch (const Json::exception&) {
   }
   return std::nullopt;

@@ -21,7 +21,10 @@ struct SummaryRow {
   std::string status;                   ///< used when record is empty
 };
 
-/// Reads DIR/run.json when it is complete (parses, has a summary); nullopt otherwise.
+/// Reads DIR/run.json when the run is complete: run.json parses and has a
+/// summary and a status, and DIR/steps.csv beside it agrees with it (a
+/// header, then exactly `steps` rows, each with the header's column count).
+/// nullopt otherwise: `sweep --resume` reruns such a run.
 std::optional<nlohmann::json> read_complete_run(const std::filesystem::path& run_dir);
 
 /// The value of a summary metric by dotted name ("handling_ms.p50"); nullopt

@@ -17,11 +17,12 @@ std::vector<ColumnSpec> with_step_columns(const std::vector<ColumnSpec>& columns
 }  // namespace
 
 RunRecord::RunRecord(const std::filesystem::path& dir, const std::vector<ColumnSpec>& columns, int frame_every,
-                     const World& initial)
+                     const World& initial, int trajectory_every)
     : m_dir((std::filesystem::create_directories(dir), dir)),
       m_csv(dir / "steps.csv", with_step_columns(columns)),
       m_frame_every(frame_every) {
   if (m_frame_every > 0) write_frame(initial);
+  if (trajectory_every > 0) m_trajectory = std::make_unique<TrajectoryWriter>(dir / "trajectory.bin", initial, trajectory_every);
 }
 
 void RunRecord::write_step(StepRow row, const World& world) {
@@ -29,6 +30,7 @@ void RunRecord::write_step(StepRow row, const World& world) {
   row.set("time_s", world.time_s);
   m_csv.write(row);
   if (m_frame_every > 0 && world.step_index % m_frame_every == 0) write_frame(world);
+  if (m_trajectory) m_trajectory->write_step(world);
 }
 
 // All bodies of the world as one VTU frame.
@@ -52,6 +54,7 @@ void RunRecord::write_frame(const World& world) {
 
 void RunRecord::finish(const nlohmann::ordered_json& run) {
   m_csv.commit();
+  if (m_trajectory) m_trajectory->commit();
   if (!m_frames.empty()) write_pvd(m_dir / "frames.pvd", m_frames);
   write_file_atomically(m_dir / "run.json", run.dump(2) + "\n");
 }

@@ -13,6 +13,7 @@
 #include "experiments/run/thread_clock.hpp"
 #include "method/detection/spatial_hash.hpp"
 #include "sim/io/input_error.hpp"
+#include "sim/world/perturbation.hpp"
 
 namespace tcb {
 namespace {
@@ -63,17 +64,19 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
   const MethodSettings settings = table != scene.methods.end() ? table->second : MethodSettings(method.settings);
   std::unique_ptr<CollisionHandler> handler = method.make(settings);
   World world = build_world(scene.world);
-  const RunSetup setup{scene, world, options.budget, options.oracle, options.overlap.value_or(options.oracle),
-                       steps_total};
+  const std::vector<Vec3> offsets = perturb_world(world, scene.perturb, options.seed);
+
   std::optional<ScopedPin> pin;  // undone when the run returns
   if (options.pin_cpu) {
     pin.emplace(*options.pin_cpu);
     if (!pin->error().empty()) throw InputError("--pin", 0, pin->error());
   }
-  const std::vector<std::unique_ptr<Meter>> meters = make_meters(setup);
   const CollisionSettings collision =
       resolve_collision_settings(world, scene.collision, scene.world.dt_s,
                                  scene.path.empty() ? std::string("scene") : scene.path.string());
+  const RunSetup setup{scene,       world, options.budget, options.oracle, options.overlap.value_or(options.oracle),
+                       steps_total, options.force_reference, &collision, options.reference_dir};
+  const std::vector<std::unique_ptr<Meter>> meters = make_meters(setup);
   handler->init(world, collision);  // not timed
   // Doubtful collision settings matter only to a method that handles collisions.
   const std::vector<std::string> warnings = method.detects ? collision.warnings : std::vector<std::string>{};
@@ -83,7 +86,7 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
   std::vector<ColumnSpec> columns;
   for (const auto& m : meters)
     for (ColumnSpec& c : m->columns()) columns.push_back(std::move(c));
-  RunRecord record(options.out_dir, columns, options.record_every, world);
+  RunRecord record(options.out_dir, columns, options.record_every, world, options.trajectory_every);
   const std::string started_at = utc_timestamp();
   const auto run_start = Clock::now();
   RunOutcome outcome{"ok", "", 0, 0.0};
@@ -155,9 +158,16 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
   run["dt"] = scene.world.dt_s;
   run["response"] = scene.collision.response_mode == ResponseMode::Implicit ? "implicit" : "explicit";
   run["seed"] = options.seed;
+  Json drawn = Json::array();
+  for (const Vec3& o : offsets) drawn.push_back({o.x(), o.y(), o.z()});
+  run["perturbation"] = {{"position_m", scene.perturb.position_m}, {"offsets_m", drawn}};
   run["pin"] = options.pin_cpu ? Json(*options.pin_cpu) : Json(nullptr);
   run["oracle"] = setup.oracle.label();
   run["oracle_volume"] = setup.overlap.label();
+  run["force_reference"] = setup.force_reference.label();
+  run["trajectory"] = options.trajectory_every > 0 ? Json{{"every", options.trajectory_every}, {"file", "trajectory.bin"}}
+                                                   : Json(nullptr);
+  run["reference"] = options.reference_dir.empty() ? Json(nullptr) : Json(options.reference_dir.string());
   run["overrides"] = scene_overrides(options.overrides);
   run["command"] = options.argv;
   run["build"] = build_info();

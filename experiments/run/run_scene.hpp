@@ -35,6 +35,8 @@ struct RunOptions {
   /// When the exact overlap volume is computed (corefinement, ~30 ms per
   /// overlapping pair: far dearer than the inside sets); unset: with the oracle.
   std::optional<OracleSchedule> overlap;
+  /// When a shadow full cycle measures the force error (force_reference_meter.hpp).
+  OracleSchedule force_reference;
   std::optional<std::int64_t> steps;  ///< overrides the scene's step count
   std::uint64_t seed = 0;
   std::filesystem::path out_dir;
@@ -43,6 +45,11 @@ struct RunOptions {
   std::vector<std::string> overrides;
   std::vector<std::string> argv;  ///< the command line as given, recorded in run.json
   int record_every = 0;           ///< write a VTU frame every N steps (0: none)
+  /// Write trajectory.bin every N steps (0: none), for runs that take this
+  /// one as their --reference (results/trajectory_file.hpp).
+  int trajectory_every = 0;
+  /// A reference run's directory: divergence from its trajectory.bin. Empty: none.
+  std::filesystem::path reference_dir;
   /// Pin the run's thread (the handling thread) to this CPU before the first
   /// step; InputError when it cannot be done. Recorded in run.json "pin".
   std::optional<int> pin_cpu;

@@ -11,6 +11,7 @@
 
 #include "method/handler/collision_settings.hpp"
 #include "method/handler/method_settings.hpp"
+#include "sim/world/perturbation.hpp"
 #include "sim/world/world_desc.hpp"
 
 namespace tcb {
@@ -28,6 +29,8 @@ struct SceneDesc {
   double max_speed_m_per_s = 1.0e3;
   /// [metrics] jitter: the scene's jitter measure ("vertical_velocity_rms"), empty for none.
   std::string jitter_measure;
+  /// [perturb]: initial conditions drawn from the run's seed (sim/world/perturbation.hpp).
+  Perturbation perturb;
 };
 
 }  // namespace tcb

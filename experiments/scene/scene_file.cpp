@@ -260,6 +260,11 @@ SceneDesc parse_scene(const std::string& text, const std::filesystem::path& path
     }
     r.finish();
   }
+  if (const toml::table* p = top.table("perturb")) {
+    TableReader r(*p, "perturb", file);
+    scene.perturb.position_m = r.non_negative("position", scene.perturb.position_m);
+    r.finish();
+  }
   if (const toml::table* methods = top.table("method")) {
     TableReader all(*methods, "method", file);
     for (auto&& [key, node] : *methods) {

@@ -166,6 +166,14 @@ SweepPlan load_sweep_plan(const std::filesystem::path& path) {
       r.fail("oracle_volume", e.what());
     }
   }
+  plan.force_reference = r.string("force_reference").value_or("off");
+  try {
+    parse_oracle_schedule(plan.force_reference, "force_reference");
+  } catch (const InputError& e) {
+    r.fail("force_reference", e.what());
+  }
+  plan.divergence_every = static_cast<int>(r.integer("divergence", 1, 1 << 30).value_or(0));
+  plan.noise_floor_m = r.non_negative("noise_floor", plan.noise_floor_m);
   std::vector<std::vector<std::string>> sets{{}};
   if (const toml::node* n = r.node("sets")) {
     const toml::array* a = n->as_array();
@@ -216,14 +224,23 @@ SweepPlan load_sweep_plan(const std::filesystem::path& path) {
           plan.runs.push_back(run);
         };
         const std::string reference_id = id_part(scene) + "-full-none" + tail;
-        if (any_relative) add(MethodEntry{"full", "full", {}, {}}, SweepBudget{}, "");  // the reference comes first
+        const bool diverge = plan.divergence_every > 0;
+        // The reference comes first; with divergence every run but it is compared with it.
+        if (any_relative || diverge) add(MethodEntry{"full", "full", {}, {}}, SweepBudget{}, "");
+        if (diverge && plan.noise_floor_m > 0.0) {
+          SweepRun floor{id_part(scene) + "-full-none-noise_floor" + tail, scene, "full", {}, SweepBudget{}, seed, s,
+                         sets[s], group, reference_id};
+          floor.sets.push_back(fmt::format("perturb.position={}", plan.noise_floor_m));
+          seen[floor.id] = plan.runs.size();
+          plan.runs.push_back(floor);
+        }
         for (const MethodEntry& method : entries)
           for (const auto& budget : method.budgets) {
             if (!uses_budget[method.id]) {
-              add(method, SweepBudget{}, "");
+              add(method, SweepBudget{}, diverge ? reference_id : "");
               continue;
             }
-            add(method, budget, budget.is_relative() ? reference_id : "");
+            add(method, budget, budget.is_relative() || diverge ? reference_id : "");
           }
       }
   return plan;

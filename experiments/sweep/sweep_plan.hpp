@@ -16,6 +16,13 @@
 ///   record  = 40                           # optional: VTU frames every N steps (report animation)
 ///   oracle  = "every:10"                   # optional, default "off"
 ///   oracle_volume = "off"                  # optional, default: with the oracle
+///   force_reference = "every:10"           # optional, default "off": force error against full
+///   divergence = 10                        # optional: the full reference run records its state
+///                                          # every 10 steps (--trajectory), every other run of
+///                                          # its group is compared with it (--reference), and a
+///                                          # noise-floor run (full under [perturb] position =
+///                                          # noise_floor) joins each group
+///   noise_floor = 1e-9                     # optional, m, default 1e-9 (0: no noise-floor run)
 ///   sets    = [[], ["scene.dt=0.002"]]     # optional variants of --set, default [[]]
 ///   figures = ["jitter", "animation"]      # optional: the report's figures these runs feed
 ///                                          # (report/tcbench_report/figures/<name>.py; the
@@ -64,7 +71,9 @@ struct SweepRun {
   std::size_t set_index = 0;
   std::vector<std::string> sets;  ///< the scene variant's --set strings
   std::size_t group = 0;        ///< index of its (scene, set, seed) group
-  std::string reference_id;     ///< for relative budgets: the run whose cost they divide
+  /// The group's full run (method full, budget none): the cost relative
+  /// budgets divide, and with `divergence` the run compared with.
+  std::string reference_id;
 };
 
 struct SweepPlan {
@@ -74,6 +83,9 @@ struct SweepPlan {
   int record = 0;  ///< --record N for every run (0: none)
   std::string oracle = "off";
   std::optional<std::string> oracle_volume;
+  std::string force_reference = "off";
+  int divergence_every = 0;     ///< 0: no trajectories, no divergence
+  double noise_floor_m = 1e-9;  ///< the noise-floor run's [perturb] position (0: none)
   std::vector<std::string> figures;  ///< the report figures the runs feed
   std::vector<SweepRun> runs;  ///< references before the runs that need them
   std::size_t groups = 0;

@@ -30,7 +30,7 @@ std::vector<std::string> budget_args(const SweepRun& run, const fs::path& runs_d
   if (!b.is_relative()) {
     switch (b.absolute.kind) {
       case BudgetKind::None: return {};
-      case BudgetKind::WallMs: return {"--budget-ms", fmt::format("{}", b.absolute.value)};
+      case BudgetKind::WallMs: return {"--budget-ms", plain_decimal(b.absolute.value)};
       case BudgetKind::Work:
         return {"--budget-work", fmt::format("{}", static_cast<std::uint64_t>(b.absolute.value))};
     }
@@ -46,7 +46,7 @@ std::vector<std::string> budget_args(const SweepRun& run, const fs::path& runs_d
       error = "reference has no handling_ms.p50";
       return {};
     }
-    return {"--budget-ms", fmt::format("{:.6g}", *p50 / b.divisor)};
+    return {"--budget-ms", plain_decimal(std::stod(fmt::format("{:.6g}", *p50 / b.divisor)))};
   }
   const auto total = summary_metric(*reference, "work_units_total");
   const double steps = (*reference)["steps"].get<double>();
@@ -62,8 +62,16 @@ pid_t start(const SweepPlan& plan, const SweepRun& run, const SweepOptions& opti
   const fs::path dir = options.out_dir / "runs" / run.id;
   std::vector<std::string> argv = {options.executable.string(), "run", run.scene, "--method", run.method,
                                    "--seed", std::to_string(run.seed), "--out", dir.string(), "--quiet",
-                                   "--oracle", plan.oracle, "--budget-label", run.budget.label};
+                                   "--oracle", plan.oracle, "--budget-label", run.budget.label,
+                                   "--force-reference", plan.force_reference};
   argv.insert(argv.end(), args.begin(), args.end());
+  if (plan.divergence_every > 0) {
+    if (run.reference_id.empty() && run.method == "full" && !run.budget.is_relative() &&
+        run.budget.absolute.kind == BudgetKind::None)
+      argv.insert(argv.end(), {"--trajectory", std::to_string(plan.divergence_every)});
+    else if (!run.reference_id.empty())
+      argv.insert(argv.end(), {"--reference", (options.out_dir / "runs" / run.reference_id).string()});
+  }
   if (plan.oracle_volume) argv.insert(argv.end(), {"--oracle-volume", *plan.oracle_volume});
   const auto steps = options.quick && plan.quick_steps ? plan.quick_steps : plan.steps;
   if (steps) argv.insert(argv.end(), {"--steps", std::to_string(*steps)});

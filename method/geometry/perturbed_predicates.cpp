@@ -23,13 +23,16 @@ int orient3d_perturbed_edge(const Vec3& p, const Vec3& q, const Vec3& a, const V
 }
 
 bool point_in_tet_perturbed(const Vec3& p, const Vec3& v0, const Vec3& v1, const Vec3& v2, const Vec3& v3) {
-  // Inside iff p + delta is on the inner side of all four outward faces
-  // (the faces of tet_faces(): face k opposite vertex k).
-  if (orient3d_perturbed_point(v1, v2, v3, p) >= 0) return false;
-  if (orient3d_perturbed_point(v0, v3, v2, p) >= 0) return false;
-  if (orient3d_perturbed_point(v0, v1, v3, p) >= 0) return false;
-  if (orient3d_perturbed_point(v0, v2, v1, p) >= 0) return false;
-  return true;
+  // Inside iff p + delta is on the same side of all four faces (the faces of
+  // tet_faces(): face k opposite vertex k): the inner side of every outward
+  // face of a positively oriented tet (all -1), or of an inverted one (all
+  // +1). The four perturbed volumes sum to the tet's, independent of p, so a
+  // flat tet (volume 0) never has four equal signs: it contains nothing.
+  const int side = orient3d_perturbed_point(v1, v2, v3, p);
+  if (side == 0) return false;
+  if (orient3d_perturbed_point(v0, v3, v2, p) != side) return false;
+  if (orient3d_perturbed_point(v0, v1, v3, p) != side) return false;
+  return orient3d_perturbed_point(v0, v2, v1, p) == side;
 }
 
 bool segment_crosses_triangle_perturbed(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c) {

@@ -16,7 +16,8 @@
 /// - Point-in-tet and edge-crosses-triangle use the same delta, so a point
 ///   found inside an object always has its border edges cross that object's
 ///   surface (a closed surface) an odd number of times.
-/// Degenerate elements: a flat tet (exact orientation 0) contains nothing; a
+/// Degenerate elements: a flat tet (exact orientation 0) contains nothing; an
+/// inverted tet contains the region it bounds; a
 /// triangle with collinear vertices is crossed by nothing. Units: any (the
 /// predicates are scale-free); inputs must meet orient3d's range contract.
 
@@ -32,8 +33,10 @@ int orient3d_perturbed_point(const Vec3& a, const Vec3& b, const Vec3& c, const 
 /// parallel to b - a (then no transversal crossing is possible).
 int orient3d_perturbed_edge(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b);
 
-/// Whether p + delta lies inside the positively oriented tet (v0, v1, v2, v3).
-/// Returns false for a flat tet.
+/// Whether p + delta lies inside the tet (v0, v1, v2, v3), positively
+/// oriented or inverted by the motion: an inverted tet still bounds its
+/// region (the oracle's rule, oracle/tet_inside.hpp). Returns false for a flat
+/// tet.
 bool point_in_tet_perturbed(const Vec3& p, const Vec3& v0, const Vec3& v1, const Vec3& v2, const Vec3& v3);
 
 /// Whether the segment (p + delta, q + delta) crosses triangle (a, b, c).

@@ -93,8 +93,16 @@ class Budget {
 /// std::nullopt otherwise.
 std::optional<double> parse_budget_number(const std::string& text);
 
+/// `value` (finite, >= 0) in the grammar above: its shortest round-trip form
+/// when that has no exponent, else positional digits (17 after the point).
+std::string plain_decimal(double value);
+
 /// A budget as asked for, before any step: its kind and value, its one text
 /// form, and the Budget each step starts from. The text forms are "none",
+/// The largest work budget: 2^53 units, the last integer a double (the
+/// spec's value) holds exactly together with all below it.
+inline constexpr double kMaxWorkBudget = 9007199254740992.0;
+
 /// "ms:X" (X >= 0 milliseconds of wall clock) and "work:N" (N whole work
 /// units); they name budgets in sweeps, thresholds, summary.csv and run.json.
 struct BudgetSpec {

@@ -154,10 +154,43 @@ void CollisionCycle::build_next_layer(const World& world) {
   m_cursor = 0;
 }
 
+namespace {
+
+// The reported stage of an internal one (stage_costs.hpp); Idle and Done run no tasks.
+CostStage cost_stage(CollisionCycle::Stage stage) {
+  using S = CollisionCycle::Stage;
+  switch (stage) {
+    case S::Prioritize: return CostStage::Prioritize;
+    case S::HashTets:
+    case S::BuildTetHash: return CostStage::HashTets;
+    case S::QueryPoints: return CostStage::QueryPoints;
+    case S::HashSurface:
+    case S::BuildSurfaceHash: return CostStage::HashSurface;
+    case S::BorderDepth: return CostStage::BorderDepth;
+    case S::Propagate:
+    case S::BuildLayer: return CostStage::Propagate;
+    case S::Forces:
+    case S::Idle:
+    case S::Done: break;
+  }
+  return CostStage::Forces;
+}
+
+}  // namespace
+
 bool CollisionCycle::advance(World& world, Budget& budget) {
   grow_margins(world);
+  if (m_stage == Stage::Done || m_stage == Stage::Idle) return m_stage == Stage::Done;
+  // Time goes to a stage when the stage changes: a clock read per change.
+  double since_ms = m_clock();
+  const auto close_stage = [&](CostStage stage) {
+    const double now_ms = m_clock();
+    m_step_costs.ms_of(stage) += now_ms - since_ms;
+    since_ms = now_ms;
+  };
   while (m_stage != Stage::Done && m_stage != Stage::Idle) {
     std::uint64_t work = 0;
+    const CostStage task_stage = cost_stage(m_stage);
     switch (m_stage) {
       case Stage::Prioritize:
         prioritize(world);
@@ -227,6 +260,7 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
           if (!c.separated) {
             work += border_point_depth(world, c, m_contacts, m_lookup, m_surface, m_surface_margin_m);
             c.depth_offset_m = contact_offset_m(world, c);
+            c.depth_step = world.step_index;
           }
         }
         if (m_cursor == m_contacts.size()) enter(Stage::Propagate, world);
@@ -236,6 +270,7 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
           Contact& c = m_contacts[m_layer_items[m_cursor++]];
           work = propagate_depth(world, c, m_contacts, m_lookup, m_layer);
           c.depth_offset_m = contact_offset_m(world, c);
+          c.depth_step = world.step_index;
         }
         if (m_cursor == m_layer_items.size()) {
           if (m_granularity.fine()) {
@@ -272,8 +307,14 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
         break;
     }
     budget.charge(work);
+    m_step_costs.work_of(task_stage) += work;
     ++m_tasks;
-    if (m_stage != Stage::Done && budget.expired()) return false;  // an interruption point
+    if (m_stage == Stage::Done || cost_stage(m_stage) != task_stage) close_stage(task_stage);
+    if (m_stage != Stage::Done && budget.expired()) {  // an interruption point
+      close_stage(cost_stage(m_stage));
+      m_step_costs.interrupted = static_cast<int>(cost_stage(m_stage));
+      return false;
+    }
   }
   return m_stage == Stage::Done;
 }

@@ -52,6 +52,7 @@
 #include "method/depth/penetration_depth.hpp"
 #include "method/handler/budget.hpp"
 #include "method/handler/collision_settings.hpp"
+#include "method/handler/stage_costs.hpp"
 
 namespace tcb {
 
@@ -125,6 +126,13 @@ class CollisionCycle {
   /// a task (false). Charges every task's work to the budget.
   bool advance(World& world, Budget& budget);
 
+  /// This step's stage costs (stage_costs.hpp), accumulated by advance() on
+  /// `clock` since the last start_step_costs(). The handler adds `apply`.
+  void start_step_costs() { m_step_costs = StageCosts{}; }
+  const StageCosts& step_costs() const { return m_step_costs; }
+  void set_clock(ClockMs clock) { m_clock = std::move(clock); }
+  const ClockMs& clock() const { return m_clock; }
+
   Stage stage() const { return m_stage; }
   bool done() const { return m_stage == Stage::Done; }
   std::int64_t number() const { return m_number; }  ///< 1 for the first cycle
@@ -175,6 +183,8 @@ class CollisionCycle {
   std::size_t m_scan_cursor = 0;
   std::vector<Contact> m_contacts;
   ContactLookup m_lookup;
+  StageCosts m_step_costs;
+  ClockMs m_clock = steady_clock_ms();
 };
 
 }  // namespace tcb

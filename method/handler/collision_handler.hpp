@@ -18,8 +18,25 @@
 #include "method/handler/budget.hpp"
 #include "method/handler/contact.hpp"
 #include "method/handler/collision_settings.hpp"
+#include "method/handler/stage_costs.hpp"
 
 namespace tcb {
+
+/// Where a force a point was given this step came from (issue 20's force
+/// error splits by it):
+///   Computed      a depth computed in this step
+///   Held          a depth (or force) computed in an earlier step, applied as it was:
+///                 the paper's cycle spanning steps, every_nth holding forces
+///   Extrapolated  the paper's estimate from the point's force history
+///   Tracked       a depth from an earlier step carried to the current
+///                 positions (interruptible_tracked)
+enum class ForceSource : std::uint8_t { Computed, Held, Extrapolated, Tracked };
+inline constexpr std::size_t kForceSources = 4;
+
+struct ForcePoint {
+  std::int32_t object = -1, vertex = -1;
+  ForceSource source = ForceSource::Computed;
+};
 
 struct StepReport {
   std::uint64_t work_units = 0;
@@ -32,6 +49,12 @@ struct StepReport {
   /// (body, vertex) of the points given a depth-based force this step (for
   /// the latency metric).
   std::vector<std::pair<std::int32_t, std::int32_t>> exact_points;
+  /// Time and work per stage of the collision cycle, and the handler's own
+  /// `apply` (stage_costs.hpp); all zero for a method without a cycle.
+  StageCosts stages;
+  /// Every point given a contact force this step (its own force; the
+  /// reactions on tet vertices are not listed), with its source.
+  std::vector<ForcePoint> force_points;
 };
 
 class CollisionHandler {

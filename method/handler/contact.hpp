@@ -29,6 +29,7 @@ struct Contact {
   DepthSource depth_source = DepthSource::None;
   std::int32_t layer = -1;              ///< propagation layer (0 for border points)
   std::int64_t detected_step = 0;       ///< World::step_index when it was detected
+  std::int64_t depth_step = -1;         ///< World::step_index when its depth was computed (-1: none)
   bool separated = false;               ///< re-checked in a later step and found outside: inert
   double depth_m = 0.0;
   Vec3 direction = Vec3::Zero();        ///< unit; pushes the point out of `other`

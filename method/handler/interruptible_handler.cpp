@@ -79,7 +79,7 @@ void InterruptibleHandler::init(const World& world, const CollisionSettings& set
   }
 }
 
-StepReport InterruptibleHandler::step(World& world, Budget& budget) {
+StepReport InterruptibleHandler::schedule_step(World& world, Budget& budget) {
   ++m_step;
   const bool reserve = m_reserve_apply && budget.kind() == BudgetKind::WallMs;
   // We do not know yet whether this step completes the cycle (its bookkeeping
@@ -105,6 +105,7 @@ StepReport InterruptibleHandler::step(World& world, Budget& budget) {
     m_applied[c.object][c.vertex] = m_step;  // decided here, so the history loop below leaves it alone
     if (c.separated) continue;               // left the object since detection: no force
     if (c.depth_source != DepthSource::None) {
+      const bool fresh = c.depth_step == world.step_index;
       if (m_stale == Stale::Track) {
         // The depth carried from the step it was computed in to the current
         // positions (unchanged within that step), and remembered with its r0.
@@ -116,10 +117,11 @@ StepReport InterruptibleHandler::step(World& world, Budget& budget) {
         // damper may push even at depth 0), so no budget stays bit for bit full.
         if (!(now.depth_m > 0.0) && contact_offset_m(world, c) != c.depth_offset_m) continue;
         apply_depth_contact(world, now);
-      } else if (i < with_force) {
-        apply_depth_contact(world, c, c.force_n);
+        report.force_points.push_back({c.object, c.vertex, fresh ? ForceSource::Computed : ForceSource::Tracked});
       } else {
-        apply_depth_contact(world, c);  // the cycle has not reached its force yet: computed now
+        if (i < with_force) apply_depth_contact(world, c, c.force_n);
+        else apply_depth_contact(world, c);  // the cycle has not reached its force yet: computed now
+        report.force_points.push_back({c.object, c.vertex, fresh ? ForceSource::Computed : ForceSource::Held});
       }
       ++report.exact_forces;
       report.exact_points.emplace_back(c.object, c.vertex);
@@ -127,6 +129,7 @@ StepReport InterruptibleHandler::step(World& world, Budget& budget) {
       if (const auto f = stale_force(world, c.object, c.vertex)) {
         apply_stale(world, *f);
         ++report.estimated_forces;
+        report.force_points.push_back({c.object, c.vertex, stale_source()});
       }
     }
   }
@@ -138,6 +141,7 @@ StepReport InterruptibleHandler::step(World& world, Budget& budget) {
       if (const auto f = stale_force(world, object, vertex)) {
         apply_stale(world, *f);
         ++report.estimated_forces;
+        report.force_points.push_back({object, vertex, stale_source()});
       }
     }
   }

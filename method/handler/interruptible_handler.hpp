@@ -86,7 +86,7 @@ class InterruptibleHandler final : public CycleHandler {
   using Options = InterruptibleOptions;
   explicit InterruptibleHandler(Stale stale, Options options = {});
   void init(const World& world, const CollisionSettings& settings) override;
-  StepReport step(World& world, Budget& budget) override;
+  StepReport schedule_step(World& world, Budget& budget) override;
   const std::vector<Contact>& contacts() const override { return m_completed; }
 
  private:
@@ -99,6 +99,7 @@ class InterruptibleHandler final : public CycleHandler {
   };
   std::optional<StaleForce> stale_force(const World& world, std::int32_t object, std::int32_t vertex);
   void apply_stale(World& world, const StaleForce& force) const;
+  ForceSource stale_source() const { return m_stale == Stale::Track ? ForceSource::Tracked : ForceSource::Extrapolated; }
   void remember_completed_cycle(const std::vector<Contact>& contacts, std::int64_t cycle_steps);
   using Point = std::pair<std::int32_t, std::int32_t>;  // (body, vertex)
 

@@ -18,6 +18,9 @@ namespace tcb {
 class ElasticModel {
  public:
   virtual ~ElasticModel() = default;
+  /// A copy with the same state (warm starts included), so a copied world
+  /// steps bit for bit like the original (clone_world, world.hpp).
+  virtual std::unique_ptr<ElasticModel> clone() const = 0;
   /// Advances x and v by dt under the elastic forces and f_ext (per vertex).
   virtual void step(std::span<Vec3> x_m, std::span<Vec3> v_m_per_s, std::span<const Vec3> f_ext_n,
                     double dt_s) = 0;

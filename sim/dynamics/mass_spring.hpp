@@ -31,6 +31,7 @@ class MassSpring final : public ElasticModel {
   MassSpring(const TetMesh& mesh, const std::vector<Vec3>& rest_m, const Material& material);
 
   void step(std::span<Vec3> x_m, std::span<Vec3> v_m_per_s, std::span<const Vec3> f_ext_n, double dt_s) override;
+  std::unique_ptr<ElasticModel> clone() const override { return std::make_unique<MassSpring>(*this); }
   double elastic_energy_j(std::span<const Vec3> x_m) const override;
   void elastic_forces(std::span<const Vec3> x_m, std::span<Vec3> f_n) const override;
   const std::vector<double>& vertex_masses_kg() const override { return m_mass_kg; }

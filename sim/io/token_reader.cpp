@@ -85,6 +85,23 @@ std::int64_t TokenReader::next_int(const char* what, std::int64_t min_value,
   return value;
 }
 
+std::int64_t TokenReader::next_reference(const char* what) {
+  const int line = peek_line();
+  const std::string_view token = next(what);
+  std::int64_t value = 0;
+  const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
+  if (ec == std::errc() && end == token.data() + token.size()) return value;
+  double real = 0.0;
+  const auto [real_end, real_ec] = std::from_chars(token.data(), token.data() + token.size(), real);
+  // 2^63 is the first double beyond int64: below it every integral double converts exactly.
+  if (real_ec == std::errc() && real_end == token.data() + token.size() && std::isfinite(real) &&
+      real == std::floor(real) && real >= -9223372036854775808.0 && real < 9223372036854775808.0)
+    return static_cast<std::int64_t>(real);
+  fail(line, std::string("expected ") + what + " (an integer, or a real with an integral value such as 0.0), found '" +
+                 std::string(token) + "'");
+  return 0;
+}
+
 void TokenReader::fail(int line, const std::string& problem) const {
   throw InputError(m_file_name, line, problem);
 }

@@ -22,6 +22,10 @@ class TokenReader {
   /// Parses the next token fully as a finite double / an integer in range.
   double next_double(const char* what);
   std::int64_t next_int(const char* what, std::int64_t min_value, std::int64_t max_value);
+  /// A reference (a label some tools write as a real, `0.0`): an integer, or a
+  /// finite real with an integral value in int64's range; anything else
+  /// fails with the file and line.
+  std::int64_t next_reference(const char* what);
   /// Consumes tokens up to the end of the current line (optional trailing fields).
   void skip_rest_of_line();
 

@@ -28,8 +28,7 @@ std::array<std::int32_t, N> read_element(TokenReader& in, std::int64_t vertex_co
                         " is outside 1.." + std::to_string(vertex_count));
     e[k] = static_cast<std::int32_t>(index - 1);
   }
-  in.next_int("an element reference", std::numeric_limits<std::int64_t>::min(),
-              std::numeric_limits<std::int64_t>::max());
+  in.next_reference("an element reference");
   return e;
 }
 
@@ -66,8 +65,7 @@ TetMesh parse_medit(const std::string& file_name, std::string text, MeditReadSta
         const double x = in.next_double("a vertex x coordinate");
         const double y = in.next_double("a vertex y coordinate");
         const double z = in.next_double("a vertex z coordinate");
-        in.next_int("a vertex reference", std::numeric_limits<std::int64_t>::min(),
-                    std::numeric_limits<std::int64_t>::max());
+        in.next_reference("a vertex reference");
         vertices.emplace_back(x, y, z);
       }
     } else if (keyword == "Tetrahedra" || keyword == "Hexahedra") {

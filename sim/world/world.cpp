@@ -5,6 +5,37 @@
 
 namespace tcb {
 
+World clone_world(const World& world) {
+  World copy;
+  copy.gravity_m_per_s2 = world.gravity_m_per_s2;
+  copy.ground = world.ground;
+  copy.time_s = world.time_s;
+  copy.step_index = world.step_index;
+  copy.contact_links = world.contact_links;
+  copy.last_contact_solve = world.last_contact_solve;
+  copy.bodies.reserve(world.bodies.size());
+  for (const Body& b : world.bodies) {
+    Body c;
+    c.name = b.name;
+    c.group = b.group;
+    c.mesh = b.mesh;
+    c.x_m = b.x_m;
+    c.v_m_per_s = b.v_m_per_s;
+    c.contact_force_n = b.contact_force_n;
+    c.applied_contact_force_n = b.applied_contact_force_n;
+    c.mass_kg = b.mass_kg;
+    c.material = b.material;
+    c.passive = b.passive;
+    c.self_collision = b.self_collision;
+    c.model = b.model ? b.model->clone() : nullptr;
+    c.trajectory = b.trajectory;
+    c.shape_m = b.shape_m;
+    c.external_force_n = b.external_force_n;
+    copy.bodies.push_back(std::move(c));
+  }
+  return copy;
+}
+
 Vec3 centre_of_mass_m(const Body& b) {
   Vec3 c = Vec3::Zero(), plain = Vec3::Zero();
   double m = 0.0;

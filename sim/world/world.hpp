@@ -77,4 +77,10 @@ class World {
   std::optional<Vec3> driven_contact_force_n() const;
 };
 
+/// A deep copy of the world's whole state (bodies, their models' warm starts,
+/// pending contact forces and links): it steps bit for bit like the
+/// original. For measurements on a shadow of the run (the force reference);
+/// World itself is not copyable, so no step copies it by accident.
+World clone_world(const World& world);
+
 }  // namespace tcb

@@ -15,6 +15,17 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// A run directory as check reads it: run.json, and a steps.csv that agrees
+// with it (a run counts as complete only then: summary_csv.hpp).
+void write_run(const fs::path& dir, nlohmann::json j) {
+  if (!j.contains("steps")) j["steps"] = 0;
+  fs::create_directories(dir);
+  write_file_atomically(dir / "run.json", j.dump());
+  std::string csv = "step,time_s\n";
+  for (std::int64_t s = 1; s <= j["steps"].get<std::int64_t>(); ++s) csv += std::to_string(s) + ",0\n";
+  write_file_atomically(dir / "steps.csv", csv);
+}
+
 // A results directory with two runs, run.json files written by hand: this
 // tests check, not the runs.
 fs::path fixture() {
@@ -30,8 +41,7 @@ fs::path fixture() {
     j["seed"] = 0;
     j["status"] = "ok";
     j["summary"] = {{"recall_min", recall}, {"depth_err", {{"max", 0.002}}}, {"jitter", nullptr}};
-    fs::create_directories(dir / "runs" / name);
-    write_file_atomically(dir / "runs" / name / "run.json", j.dump());
+    write_run(dir / "runs" / name, j);
   };
   run("a", "full", "none", 1.0);
   run("b", "interruptible", "work:100", 0.8);
@@ -118,7 +128,7 @@ min = 0.7
   fs::create_directories(dir / "1_stack" / "runs");
   fs::rename(dir / "runs" / "c", dir / "1_stack" / "runs" / "c");
   fs::create_directories(dir / "report" / "x");
-  write_file_atomically(dir / "report" / "x" / "run.json", read_file(dir / "1_stack" / "runs" / "c" / "run.json"));
+  write_run(dir / "report" / "x", nlohmann::json::parse(read_file(dir / "1_stack" / "runs" / "c" / "run.json")));
   const auto deep = check_thresholds(load_thresholds(thresholds(R"toml([[threshold]]
 scene = "plates20"
 method = "every_nth(n=3)"
@@ -145,8 +155,7 @@ TEST_CASE("check filters by response mode and bounds ratios to a reference run",
     j["overrides"] = overrides;
     j["status"] = "ok";
     j["summary"] = {{"jitter", jitter}};
-    fs::create_directories(dir / name);
-    write_file_atomically(dir / name / "run.json", j.dump());
+    write_run(dir / name, j);
   };
   run("full_implicit", "full", "none", "implicit", 0.02);
   // Another sweep's full of the same scene (it sorts first): never the reference of a run elsewhere.
@@ -211,8 +220,7 @@ TEST_CASE("a wall-clock threshold on a noisy run is inconclusive: exit 4, or 1 w
                     {"overshoot_pct", {{"p99", overshoot_p99}}},
                     {"overshoot_cpu_pct", {{"p99", 1.0}}},
                     {"timing", {{"verdict", verdict}}}};
-    fs::create_directories(dir / name);
-    write_file_atomically(dir / name / "run.json", j.dump());
+    write_run(dir / name, j);
   };
   run("wall", "wall_ms", "noisy");
   run("work", "work", "noisy");

@@ -141,3 +141,45 @@ TEST_CASE("cli: list", "[cli]") {
   for (const char* m : {"full", "every_nth", "brute_force", "none"}) CHECK_THAT(methods, Catch::Matchers::Contains(m));
   CHECK(cli({"list", "widgets"}).code == 2);
 }
+
+TEST_CASE("cli: budgets and seeds are refused when out of range, never rewritten (issue 15, defect 1)", "[cli]") {
+  const fs::path dir = fresh_dir("ranges");
+  for (const std::vector<std::string>& bad : std::vector<std::vector<std::string>>{
+           {"--budget-work", "18446744073709551615"}, {"--budget-work", "-5"}, {"--budget-work", "9223372036854775807"},
+           {"--budget-work", "9007199254740993"}, {"--budget-work", "1.5"}, {"--budget-work", "2e4"},
+           {"--budget-ms", "nan"}, {"--budget-ms", "inf"}, {"--budget-ms", "-1"}, {"--budget-ms", "1e-3"},
+           {"--seed", "-1"}, {"--seed", "18446744073709551616"}, {"--seed", "abc"}, {"--seed", ""}}) {
+    INFO(bad[0] << " " << bad[1]);
+    fs::remove_all(dir / "bad");
+    std::vector<std::string> args = {"run", "cube_drop", "--steps", "1", "--out", (dir / "bad").string()};
+    args.insert(args.end(), bad.begin(), bad.end());
+    const Result r = cli(args);
+    CHECK(r.code == 2);
+    CHECK_THAT(r.err, Catch::Matchers::Contains(bad[0]));
+    CHECK_FALSE(fs::exists(dir / "bad"));
+  }
+  // The largest values are stored exactly as given.
+  const Result big = cli({"run", "cube_drop", "--method", "interruptible", "--steps", "1", "--budget-work",
+                          "9007199254740992", "--seed", "18446744073709551615", "--out", (dir / "big").string(),
+                          "--quiet"});
+  REQUIRE(big.code == 0);
+  const auto run = nlohmann::json::parse(tcb::read_file(dir / "big" / "run.json"));
+  CHECK(run["budget"]["value"].get<std::uint64_t>() == 9007199254740992ull);
+  CHECK(run["budget"]["label"] == "work:9007199254740992");
+  CHECK(run["seed"].get<std::uint64_t>() == 18446744073709551615ull);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("cli: check against a results directory that is not there is bad input (issue 15, defect 7)", "[cli]") {
+  const fs::path missing = fresh_dir("no_results");
+  const std::string thresholds = std::string(TCBENCH_DATA_DIR) + "/../experiments/thresholds/ci.toml";
+  const Result r = cli({"check", thresholds, missing.string()});
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Catch::Matchers::Contains("no such results directory"));
+  const fs::path file = fresh_dir("a_file");
+  tcb::write_file_atomically(file, "x");
+  const Result f = cli({"check", thresholds, file.string()});
+  CHECK(f.code == 2);
+  CHECK_THAT(f.err, Catch::Matchers::Contains("is not a directory"));
+  fs::remove(file);
+}

@@ -44,8 +44,19 @@ TEST_CASE("one budget type: BudgetSpec parses and labels its three forms", "[swe
   }
   CHECK(BudgetSpec::parse("ms:4.5")->kind_name() == "wall_ms");
   CHECK(BudgetSpec::parse("work:7")->start().kind() == BudgetKind::Work);
-  for (const char* bad : {"", "ms", "ms:nan", "ms:inf", "work:-1", "work:2.5", "full/3", "none "})
+  for (const char* bad : {"", "ms", "ms:nan", "ms:inf", "work:-1", "work:2.5", "full/3", "none ",
+                          "work:9007199254740993", "work:9223372036854775807"})
     CHECK_FALSE(BudgetSpec::parse(bad).has_value());
+  // 2^53 is the largest work budget (a double holds it and everything below exactly).
+  CHECK(BudgetSpec::parse("work:9007199254740992")->label() == "work:9007199254740992");
+  // Tiny and huge wall budgets are labelled without an exponent, so the label parses back.
+  for (const double ms : {1e-5, 3.5e-7, 1e22, 0.1, 123456.75}) {
+    INFO(ms);
+    const BudgetSpec spec{BudgetKind::WallMs, ms};
+    const auto again = BudgetSpec::parse(spec.label());
+    REQUIRE(again.has_value());
+    CHECK(again->value == Approx(ms).epsilon(1e-12));
+  }
 }
 
 TEST_CASE("sweep methods: a name, or a table with the method's settings checked like a scene's", "[sweep]") {
@@ -169,4 +180,45 @@ TEST_CASE("malformed sweep files are rejected with the file and the line", "[swe
     }
     fs::remove(path);
   }
+}
+
+TEST_CASE("divergence: every group gets its full reference, a noise-floor run, and every run waits for it", "[sweep]") {
+  const fs::path path = write_sweep("divergence", R"([sweep]
+scenes = ["cube_drop"]
+methods = ["every_nth", "interruptible"]
+budgets = ["work:100"]
+seeds = [0, 1]
+divergence = 5
+noise_floor = 2e-9
+)");
+  const SweepPlan plan = load_sweep_plan(path);
+  CHECK(plan.divergence_every == 5);
+  CHECK(plan.noise_floor_m == 2e-9);
+  std::size_t floors = 0;
+  for (const SweepRun& run : plan.runs) {
+    INFO(run.id);
+    const bool reference = run.method == "full" && run.reference_id.empty();
+    if (reference) continue;
+    CHECK_FALSE(run.reference_id.empty());  // compared with its group's full run
+    const auto at = std::find_if(plan.runs.begin(), plan.runs.end(), [&](const SweepRun& r) { return r.id == run.reference_id; });
+    REQUIRE(at != plan.runs.end());
+    CHECK(at->group == run.group);
+    CHECK(at - plan.runs.begin() < &run - plan.runs.data());  // the reference comes first
+    if (run.id.find("noise_floor") != std::string::npos) {
+      ++floors;
+      CHECK(run.method == "full");
+      CHECK(run.sets == std::vector<std::string>{"perturb.position=2e-09"});
+    }
+  }
+  CHECK(floors == 2);
+  CHECK(plan.runs.size() == 2 * 4);  // per seed: full, its noise floor, every_nth, interruptible
+  fs::remove(path);
+  const fs::path off = write_sweep("divergence_off", "[sweep]\nscenes = [\"cube_drop\"]\nmethods = [\"every_nth\"]\nbudgets = [\"none\"]\n");
+  const SweepPlan without = load_sweep_plan(off);
+  REQUIRE(without.runs.size() == 1);
+  CHECK(without.runs[0].reference_id.empty());
+  fs::remove(off);
+  const fs::path bad = write_sweep("divergence_bad", "[sweep]\nscenes = [\"cube_drop\"]\nmethods = [\"full\"]\nbudgets = [\"none\"]\ndivergence = 0\n");
+  CHECK_THROWS_AS(load_sweep_plan(bad), InputError);
+  fs::remove(bad);
 }

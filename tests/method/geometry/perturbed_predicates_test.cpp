@@ -88,6 +88,23 @@ TEST_CASE("perturbed point in tet: named cases on one tet", "[predicates]") {
   CHECK_FALSE(point_in_tet_perturbed(Vec3(0.2, 0.2, 0), a, b, c, Vec3(0.5, 0.5, 0)));
 }
 
+TEST_CASE("perturbed point in tet: an inverted tet contains the region it bounds, as the oracle counts it", "[predicates]") {
+  // The same tet with two vertices swapped (negative orientation), as an
+  // element inverted by the motion is: the same points are inside, the same
+  // touching points decided the same way (the faces are the same planes).
+  const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0), d(0, 0, 1);
+  for (const Vec3& p : {Vec3(0.1, 0.1, 0.1), Vec3(1, 1, 1), a, Vec3(0, 0.25, 0.25), Vec3(0.25, 0.25, 0),
+                        Vec3(0.25, 0.25, 0.5), Vec3(-0.1, 0.2, 0.2), Vec3(0.3, 0.3, 0.3)}) {
+    INFO(p.transpose());
+    CHECK(point_in_tet_perturbed(p, a, c, b, d) == point_in_tet_perturbed(p, a, b, c, d));
+    CHECK(point_in_tet_perturbed(p, b, a, c, d) == point_in_tet_perturbed(p, a, b, c, d));
+  }
+  CHECK(point_in_tet_perturbed(Vec3(0.1, 0.1, 0.1), a, c, b, d));
+  // A flat tet contains nothing in either vertex order.
+  CHECK_FALSE(point_in_tet_perturbed(Vec3(0.2, 0.2, 0), a, c, b, Vec3(0.5, 0.5, 0)));
+  CHECK_FALSE(point_in_tet_perturbed(Vec3(0.2, 0.2, 1e-9), a, c, b, Vec3(0.5, 0.5, 0)));
+}
+
 TEST_CASE("perturbed point in tet: every lattice point in exactly one tet of a tiling", "[predicates]") {
   const TetMesh mesh = make_box_mesh(Vec3(2, 2, 2), 2, 2, 2);  // vertices at -1, 0, 1
   for (const Transform& t : transforms()) {

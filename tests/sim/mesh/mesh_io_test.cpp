@@ -66,6 +66,15 @@ TEST_CASE("MEDIT: write then read is lossless", "[io]") {
   fs::remove_all(dir);
 }
 
+TEST_CASE("MEDIT: references written as reals with integral values are read (issue 15, defect 9)", "[io]") {
+  const std::string text =
+      "MeshVersionFormatted 1\nDimension 3\nVertices\n4\n0 0 0 0.0\n1 0 0 1.\n0 1 0 -2.0\n0 0 1 3e0\n"
+      "Tetrahedra\n1\n1 2 3 4 0.0\nEnd\n";
+  const TetMesh mesh = parse_medit("reals.mesh", text);
+  CHECK(mesh.vertex_count() == 4);
+  CHECK(mesh.tet_count() == 1);
+}
+
 TEST_CASE("MEDIT: malformed files name the file, the line and the problem", "[io]") {
   struct Case {
     const char* name;
@@ -88,6 +97,9 @@ TEST_CASE("MEDIT: malformed files name the file, the line and the problem", "[io
       {"no elements", head + "End\n", 3, "not a volume mesh"},
       {"repeated vertex", head + "Tetrahedra\n1\n1 2 2 4 0\n", 0, "repeats vertex"},
       {"stray number", "Dimension 3\n7\n", 2, "expected a section keyword"},
+      {"non-integral element reference", head + "Tetrahedra\n1\n1 2 3 4 0.5\n", 11, "found '0.5'"},
+      {"non-integral vertex reference", "Dimension 3\nVertices\n1\n0 0 0 2.25\n", 4, "an integral value"},
+      {"text reference", head + "Tetrahedra\n1\n1 2 3 4 x\n", 11, "found 'x'"},
   };
   for (const Case& c : cases) {
     INFO(c.name);
