@@ -8,13 +8,15 @@ the same numbers. Where the paper is qualitative, a rule uses a threshold of
 ours; the record names it in `ours` and the report flags it. A record's `per`
 judges its runs in parts, one table row each: per contact response (implicit or
 explicit penalty contact), so the reader sees which verdicts are the
-integrator's, and per method variant.
+integrator's, and per method variant. A record's `evidence` appends what other figures' runs show (force
+error, divergence over its noise floor) to the measured text, split alike, and never changes the verdict.
 """
+import math
 from dataclasses import dataclass, field
 
 from . import figures, pairing
-from .loader import response_order
-from .paper import (EVERY_NTH_N, JITTER_FACTOR, LATENCY_STEPS, OVERSHOOT_PCT, SPEEDUP, SPEEDUP_MIN,
+from .loader import relative_divisor, response_order
+from .paper import (EVERY_NTH_N, FLOOR_FACTOR, JITTER_FACTOR, LATENCY_STEPS, OVERSHOOT_PCT, SPEEDUP, SPEEDUP_MIN,
                     STANDING_FRACTION)
 
 HOLDS, FAILS, UNMEASURED = "holds", "does not hold", "not measured"
@@ -41,6 +43,15 @@ class Select:
 
 
 @dataclass(frozen=True)
+class Evidence:
+    """Further evidence a claim shows beside its verdict, from another figure's runs: text only, it never
+    changes the verdict (a secondary verdict it finds is stated in the text)."""
+    figure: str      # the figure whose runs it reads
+    select: Select
+    rule: object     # rule(runs, ctx) -> text
+
+
+@dataclass(frozen=True)
 class Claim:
     id: str
     text: str
@@ -53,6 +64,7 @@ class Claim:
     # Judged separately for each value of these: "response" (implicit or explicit penalty
     # contact: which verdicts are the integrator's), "method" (each method variant selected).
     per: tuple = ()
+    evidence: tuple = ()  # Evidence shown after what the rule measured, split by `per` alike
 
 
 @dataclass
@@ -172,9 +184,31 @@ def speedup_range(rows, what):
     return text
 
 
+STEP_WHAT = "whole step (step_ms: handling + dynamics)"
+
+
+def step_speedups(rows):
+    """The whole step's speed-up for (run, reference, ...) rows, as text: its median (p50) and p99 ranges,
+    shown beside the handling one and deciding nothing; "n/a" for runs (or references) recorded before
+    summary.step_ms."""
+    medians = [(run, pairing.step_speedup(run, ref)) for run, ref, *_ in rows]
+    tails = [(run, pairing.step_speedup(run, ref, "p99")) for run, ref, *_ in rows]
+    known = [(run, ratio) for run, ratio in medians if ratio is not None]
+    if not known:
+        return f"{STEP_WHAT}: n/a (no step_ms in these runs or their references)"
+    parts = [speedup_range(known, f"median (p50) {STEP_WHAT} (shown, not judged)"),
+             speedup_range([(run, tail) for run, tail in tails if tail is not None],
+                           "p99 whole step (shown, not judged)")]
+    if len(known) < len(medians):
+        parts.append(f"whole step n/a for {plural(len(medians) - len(known), 'run')} without step_ms "
+                     "(or whose reference has none)")
+    return "; ".join(part for part in parts if part)
+
+
 def best_speedup(runs, ctx):
     """Judged on the median (p50) per-step handling time, the statistic a budget full/K divides; the p99
-    speed-up (what a deadline sees) is shown beside it and decides nothing."""
+    speed-up (what a deadline sees) and the whole step's (handling + dynamics: what the application sees,
+    median and p99) are shown beside it and decide nothing."""
     rows = pairing.budgeted_with_reference(runs, ctx.runs)
     if not rows:
         return UNMEASURED, UNMEASURED
@@ -183,7 +217,8 @@ def best_speedup(runs, ctx):
     measured = "; ".join(part for part in (
         speedup_range([(run, ratio) for run, _, ratio in rows], "median (p50) handling time"),
         speedup_range([(run, tail) for run, tail in tails if tail is not None],
-                      "p99 handling time (shown, not judged)")) if part)
+                      "p99 handling time (shown, not judged)"),
+        step_speedups(rows)) if part)
     verdict = HOLDS if best[2] >= SPEEDUP_MIN else FAILS
     return measured, f"{verdict} (the budget sets it; what it costs is in the speed-up figure)"
 
@@ -294,6 +329,190 @@ def latency_bound(runs, ctx):
     return measured, verdict
 
 
+# ---------------------------------------------------------------- further evidence: force error, divergence
+
+FORCE_KEY = "force_error.relative_l2.p50"
+FORCE_WHAT = "force error (relative L2 against full's forces from the same state, p50 over sampled steps)"
+DIVERGENCE_WHAT = (f"divergence (RMS vertex distance to full at the last compared step, {pairing.DIVERGENCE}, "
+                   "as a multiple of the noise floor)")
+
+
+def has_force_error(run):
+    return run.metric(FORCE_KEY) is not None
+
+
+def has_divergence(run):
+    return run.metric(pairing.DIVERGENCE) is not None and not pairing.is_noise_floor(run)
+
+
+def divergence_text(run, ctx):
+    """(multiple of the floor or None, "357x floor" | "1.71e-04 m (no noise-floor run)")."""
+    floor = pairing.noise_floor(run, ctx.runs)
+    multiple = pairing.floor_multiple(run, floor)
+    if multiple is not None:
+        return multiple, f"{multiple:.3g}x floor"
+    value = run.metric(pairing.DIVERGENCE)
+    why = "no noise-floor run" if floor is None else "floor 0"
+    return None, f"{num(value, 'm')} ({why})"
+
+
+def above_noise(mine, theirs):
+    """Whether two multiples of the same floor differ by FLOOR_FACTOR floors or more (ours): only then does
+    the difference between two divergences decide anything."""
+    return mine is not None and theirs is not None and abs(mine - theirs) >= FLOOR_FACTOR
+
+
+def every_nth_n(run):
+    n = run.settings.get("n", EVERY_NTH_N)
+    return n if isinstance(n, (int, float)) and n > 0 else None
+
+
+def comparable_interruptible(run, ctx, has):
+    """The paper's method (interruptible with PAPER_TASKS) in run's experiment at the relative budget (full/K
+    or full-work/K) nearest every_nth's share of full's work (1/n), work budgets first; with `has(run)` true.
+    Returns (that run, K) or (None, None)."""
+    n, key = every_nth_n(run), pairing.setup(run)
+    candidates = []
+    for r in ctx.runs:
+        k = relative_divisor(r.budget_label)
+        if (r.method == "interruptible" and k and has(r) and pairing.setup(r) == key
+                and all(r.settings.get(name, value) == value for name, value in PAPER_TASKS.items())):
+            candidates.append((abs(math.log(k / n)) if n else 0.0, r.budget_kind != "work", k < (n or 0), r.name, r, k))
+    if not candidates:
+        return None, None
+    *_, best, k = min(candidates)
+    return best, k
+
+
+def inferior(mine, theirs, n, k, decided=True):
+    """every_nth (n) against interruptible at full/K: inferior when it erred more with no less work; not when it
+    erred no more with no more work; otherwise the work differs the wrong way to tell."""
+    if not decided:
+        return "inferior: undecided, they differ by less than the noise"
+    if mine > theirs and k >= n:
+        return "inferior: yes" + ("" if k == n else f", though interruptible had less work (1/{k:g} of full's)")
+    if mine <= theirs and k <= n:
+        return "inferior: no" + ("" if k == n else f", though interruptible had more work (1/{k:g} of full's)")
+    more = "every_nth" if k > n else "interruptible"
+    return f"inferior: undecided, {more} had more work: every_nth 1/{n:g} of full's, interruptible 1/{k:g}"
+
+
+def named(run, runs):
+    """" (plates20, seed 0)" when the evidence has several runs, else ""."""
+    return f" ({run.scene}, seed {run.seed})" if len(runs) > 1 else ""
+
+
+def every_nth_force(runs, ctx):
+    """every_nth (n = 2) against the paper's method at the budget nearest its work: force error p50."""
+    runs = [r for r in runs if has_force_error(r)]
+    if not runs:
+        return f"{FORCE_WHAT}: n/a (no every_nth n={EVERY_NTH_N} run with summary.force_error)"
+    notes = []
+    for r in runs:
+        n, mine = every_nth_n(r), r.metric(FORCE_KEY)
+        other, k = comparable_interruptible(r, ctx, has_force_error)
+        text = f"every_nth n={n:g} {mine:.3g}{named(r, runs)}"
+        if other is None:
+            notes.append(f"{text} vs no interruptible run (paper's settings, relative budget, same setup) with "
+                         "force error: n/a")
+            continue
+        theirs = other.metric(FORCE_KEY)
+        notes.append(f"{text} vs interruptible at {other.budget_label} {theirs:.3g} ({inferior(mine, theirs, n, k)})")
+    return f"{FORCE_WHAT}: " + "; ".join(notes)
+
+
+def every_nth_divergence(runs, ctx):
+    """every_nth (n = 2) against the paper's method at the budget nearest its work: divergence over the floor."""
+    runs = [r for r in runs if has_divergence(r)]
+    if not runs:
+        return f"{DIVERGENCE_WHAT}: n/a (no every_nth n={EVERY_NTH_N} run with summary.divergence)"
+    notes = []
+    for r in runs:
+        n = every_nth_n(r)
+        mine, mine_text = divergence_text(r, ctx)
+        other, k = comparable_interruptible(r, ctx, has_divergence)
+        text = f"every_nth n={n:g} {mine_text}{named(r, runs)}"
+        if other is None:
+            notes.append(f"{text} vs no interruptible run (paper's settings, relative budget, same setup) with "
+                         "divergence: n/a")
+            continue
+        theirs, theirs_text = divergence_text(other, ctx)
+        verdict = (inferior(mine, theirs, n, k, above_noise(mine, theirs)) if mine is not None and theirs is not None
+                   else "inferior: undecided without a noise floor")
+        notes.append(f"{text} vs interruptible at {other.budget_label} {theirs_text} ({verdict})")
+    return f"{DIVERGENCE_WHAT}: " + "; ".join(notes)
+
+
+def where_scene(run, group):
+    """where(run, group), the scene first when the group spans several (the evidence reads every scene's runs)."""
+    return (f"{run.scene} " if len({r.scene for r in group}) > 1 else "") + where(run, group)
+
+
+def lower_with(mine, theirs, decided=True):
+    if not decided:
+        return "lower with: undecided, they differ by less than the noise"
+    return "lower with: yes" if mine < theirs else "lower with: no"
+
+
+def extrapolation_force(runs, ctx):
+    """The paper's method against the ablation without extrapolation at the same budget: force error p50."""
+    runs = [r for r in runs if has_force_error(r)]
+    if not runs:
+        return f"{FORCE_WHAT}: n/a (no interruptible run with summary.force_error)"
+    notes = []
+    for label, group in by_budget(runs):
+        for r in group:
+            other = pairing.counterpart(r, ctx.runs, ABLATION)
+            mine = r.metric(FORCE_KEY)
+            theirs = other.metric(FORCE_KEY) if other else None
+            if theirs is None:
+                notes.append(f"{where_scene(r, group)}: {mine:.3g} with extrapolation, no {ABLATION} run with "
+                             "force error at this budget: n/a")
+            else:
+                notes.append(f"{where_scene(r, group)}: {mine:.3g} with extrapolation, {theirs:.3g} without "
+                             f"({lower_with(mine, theirs)})")
+    return f"{FORCE_WHAT}: " + "; ".join(notes)
+
+
+def extrapolation_divergence(runs, ctx):
+    """The paper's method against the ablation without extrapolation at the same budget: divergence over the
+    floor."""
+    runs = [r for r in runs if has_divergence(r)]
+    if not runs:
+        return f"{DIVERGENCE_WHAT}: n/a (no interruptible run with summary.divergence)"
+    notes = []
+    for label, group in by_budget(runs):
+        for r in group:
+            other = pairing.counterpart(r, ctx.runs, ABLATION)
+            mine, mine_text = divergence_text(r, ctx)
+            if other is None or not has_divergence(other):
+                notes.append(f"{where_scene(r, group)}: {mine_text} with extrapolation, no {ABLATION} run with "
+                             "divergence at this budget: n/a")
+                continue
+            theirs, theirs_text = divergence_text(other, ctx)
+            verdict = (lower_with(mine, theirs, above_noise(mine, theirs)) if mine is not None and theirs is not None
+                       else "lower with: undecided without a noise floor")
+            notes.append(f"{where_scene(r, group)}: {mine_text} with extrapolation, {theirs_text} without ({verdict})")
+    return f"{DIVERGENCE_WHAT}: " + "; ".join(notes)
+
+
+EVERY_NTH_EVIDENCE = (
+    Evidence("force_error", Select(methods=("every_nth",), settings={"n": EVERY_NTH_N}, measured=(FORCE_KEY,)),
+             every_nth_force),
+    Evidence("divergence", Select(methods=("every_nth",), settings={"n": EVERY_NTH_N},
+                                  measured=(pairing.DIVERGENCE,)), every_nth_divergence))
+EXTRAPOLATION_EVIDENCE = (
+    Evidence("force_error", Select(methods=("interruptible",), settings=PAPER_TASKS,
+                                   budget_kinds=("wall_ms", "work"), measured=(FORCE_KEY,)), extrapolation_force),
+    Evidence("divergence", Select(methods=("interruptible",), settings=PAPER_TASKS,
+                                  budget_kinds=("wall_ms", "work"), measured=(pairing.DIVERGENCE,)),
+             extrapolation_divergence))
+EVIDENCE_KEYS = (FORCE_KEY, pairing.DIVERGENCE)
+FLOOR_OURS = (f"FLOOR_FACTOR = {FLOOR_FACTOR:g}: two divergences (as multiples of the noise floor, same setup) "
+              "differ only when they are that many floors apart; the force-error and divergence evidence is shown "
+              "with its own verdict in the text and does not decide the row's")
+
+
 # ---------------------------------------------------------------- the table
 
 CLAIMS = [
@@ -311,10 +530,12 @@ CLAIMS = [
           paper=f"up to {SPEEDUP:g}x (120 -> 40 ms)",
           figure="speedup", select=Select(methods=("interruptible",), settings=PAPER_TASKS, budget_kinds=("wall_ms",),
                                         measured=("handling_ms.p50",)),
-          metrics=("handling_ms.p50", "handling_ms.p99"), rule=best_speedup,
+          metrics=("handling_ms.p50", "handling_ms.p99", "step_ms.p50", "step_ms.p99"), rule=best_speedup,
           ours=(f"SPEEDUP_MIN = {SPEEDUP_MIN:g}: counts as reproduced from {SPEEDUP_MIN:g}x",
                 "the statistic: full's median (p50) per-step handling time over the run's (the paper names none); "
-                "the p99 ratio is shown beside it, not judged")),
+                "the p99 ratio is shown beside it, not judged",
+                "the whole step's ratio (step_ms: handling + dynamics, median and p99) is shown beside it, "
+                "not judged")),
     Claim(id="stack_rests",
           text="A stack rests plausibly under the budget: stable, standing, no pass-through, plausible jitter",
           paper="plausible resting contact",
@@ -333,8 +554,12 @@ CLAIMS = [
           text=f"Handling collisions only every n-th step (n = {EVERY_NTH_N}) makes resting contact jitter",
           paper="resting contact jitters",
           figure="jitter", select=Select(methods=("every_nth",), settings={"n": EVERY_NTH_N}, measured=("jitter",)),
-          metrics=("jitter",), rule=jitters, per=("response",),
-          ours=(f"JITTER_FACTOR = {JITTER_FACTOR:g}: jitter (RMS) is more than that times full's (same setup)",)),
+          metrics=("jitter",) + EVIDENCE_KEYS, rule=jitters, per=("response",), evidence=EVERY_NTH_EVIDENCE,
+          ours=(f"JITTER_FACTOR = {JITTER_FACTOR:g}: jitter (RMS) is more than that times full's (same setup)",
+                "the force-error and divergence comparison: every_nth n against interruptible (the paper's "
+                "settings) at the relative budget nearest 1/n of full's work; inferior when it errs more with no "
+                "less work, not inferior when it errs no more with no more work",
+                FLOOR_OURS)),
     Claim(id="extrapolation_steadies",
           text="Force extrapolation avoids jitter: interruptible jitters less than interruptible_no_extrapolation "
                "at the same budget",
@@ -342,9 +567,11 @@ CLAIMS = [
           figure="jitter", select=Select(methods=("interruptible",), settings=PAPER_TASKS,
                                        budget_kinds=("wall_ms", "work"),
                                        measured=("jitter",)),
-          metrics=("jitter",), rule=extrapolation_steadies, per=("response",),
+          metrics=("jitter",) + EVIDENCE_KEYS, rule=extrapolation_steadies, per=("response",),
+          evidence=EXTRAPOLATION_EVIDENCE,
           ours=("the comparison: the paper gives no ablation; lower jitter (RMS) than the same run without "
-                "extrapolation counts",)),
+                "extrapolation counts",
+                FLOOR_OURS)),
     Claim(id="latency",
           text=f"A fast heavy object: latency up to {LATENCY_STEPS} steps keeps it from passing through; "
                "more lets it pass",
@@ -360,27 +587,58 @@ PARTS = {  # claim.per name -> (the run's value, its sort key, how a row names i
 }
 
 
+def part_key(claim, run):
+    """The values of the claim's `per` keys for run: which row judges it."""
+    return tuple(PARTS[p][0](run) for p in claim.per)
+
+
 def parts(claim, runs):
     """[(part text, runs)]: runs split by the claim's `per` keys; one part of all runs when it has none
     (or no runs)."""
+    return [(text, [r for r in runs if part_key(claim, r) == key]) for text, key in part_keys(claim, runs)]
+
+
+def part_keys(claim, runs):
+    """[(part text, key)] of the parts runs fall in, in order; [("", None)] when the claim has no `per` or
+    there are no runs."""
     if not claim.per or not runs:
-        return [("", runs)]
-    groups = {}
-    for r in runs:
-        groups.setdefault(tuple(PARTS[p][0](r) for p in claim.per), []).append(r)
-    order = sorted(groups, key=lambda key: tuple(PARTS[p][1](v) for p, v in zip(claim.per, key)))
-    return [(", ".join(PARTS[p][2](v) for p, v in zip(claim.per, key)), groups[key]) for key in order]
+        return [("", None)]
+    keys = sorted({part_key(claim, r) for r in runs},
+                  key=lambda key: tuple(PARTS[p][1](v) for p, v in zip(claim.per, key)))
+    return [(", ".join(PARTS[p][2](v) for p, v in zip(claim.per, key)), key) for key in keys]
 
 
 def judge(ctx):
     """[Outcome] for every claim, judged on the runs its figure draws: one per part of them (response
-    mode, method variant) where the claim says so."""
+    mode, method variant) where the claim says so. A claim's further evidence (force error, divergence)
+    comes from its own figures' runs, is split alike and appended to what was measured; a part that only
+    the evidence has still gets a row (its verdict: not measured)."""
     modules = dict(figures.discover())
+
+    def scope(name):
+        module = modules.get(name)
+        return figures.runs_in_scope(name, module, ctx.runs) if module else []
+
     outcomes = []
     for claim in CLAIMS:
-        module = modules.get(claim.figure)
-        scope = figures.runs_in_scope(claim.figure, module, ctx.runs) if module else []
-        for part, runs in parts(claim, claim.select(scope)):
+        judged = claim.select(scope(claim.figure))
+        evidence = [(e, e.select(scope(e.figure))) for e in claim.evidence]
+        everything = judged + [r for _, runs in evidence for r in runs]
+        for part, key in part_keys(claim, everything):
+            runs = in_part(claim, key, judged)
             measured, verdict = claim.rule(runs, ctx)
-            outcomes.append(Outcome(claim, measured, verdict, runs, part))
+            if evidence:
+                if measured == UNMEASURED:
+                    measured = f"{claim.metrics[0]} (what the verdict judges): {UNMEASURED}" + (
+                        f" in the runs of sweeps declaring the {claim.figure} figure"
+                        if getattr(modules.get(claim.figure), "SCOPE", "") == "declared" else "")
+                measured = "; ".join([measured] + [e.rule(in_part(claim, key, ev_runs), ctx)
+                                                   for e, ev_runs in evidence])
+            extra = [r for _, ev_runs in evidence for r in in_part(claim, key, ev_runs) if r not in runs]
+            outcomes.append(Outcome(claim, measured, verdict, runs + extra, part))
     return outcomes
+
+
+def in_part(claim, key, runs):
+    """The runs in the part `key` (from part_keys) of a claim: all of them when the claim has no parts."""
+    return list(runs) if key is None else [r for r in runs if part_key(claim, r) == key]

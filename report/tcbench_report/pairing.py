@@ -1,11 +1,21 @@
 """A budgeted run's reference: the same experiment handled fully, without a budget.
 
 Written once here because the speed-up figure, the claims and the jitter
-comparison all need it and must agree on it.
+comparison all need it and must agree on it. The speed-up is the handling
+time's (what the paper claims) or the whole step's (handling + dynamics).
 """
 from .loader import response_override
 
 REFERENCE_METHOD = "full"  # the registry's exhaustive baseline
+
+
+PERTURB_PREFIX = "perturb."  # a noise-floor run's overrides: perturb.position=1e-09
+
+
+def perturbation_override(override):
+    """True for an override that perturbs the initial state (`perturb.position=...`): what makes a noise-floor
+    run, not a different experiment."""
+    return override.partition("=")[0].strip().startswith(PERTURB_PREFIX)
 
 
 def setup(run):
@@ -49,14 +59,25 @@ def counterpart(run, runs, method):
                          and r.budget_kind == run.budget_kind and r.budget_label == run.budget_label])
 
 
-def speedup(run, ref, stat="p50"):
-    """The reference's handling time over the run's, both as the statistic `stat` of summary.handling_ms
-    (p50: the median, what a budget "full/K" divides; p99: what a deadline sees), or None when either
-    is missing or 0."""
+HANDLING = "handling_ms"  # collision handling per step: what the paper's speed-up is about
+STEP = "step_ms"          # the whole step a user pays: handling + dynamics (the implicit contact solve included)
+
+
+def speedup(run, ref, stat="p50", key=HANDLING):
+    """The reference's time per step over the run's, both as the statistic `stat` of summary.<key>
+    (p50: the median, what a budget "full/K" divides; p99: what a deadline sees); key is handling_ms
+    (collision handling) or step_ms (the whole step). None when either is missing or 0, as for runs
+    recorded before the summary had the key."""
     if ref is None:
         return None
-    full, mine = ref.metric(f"handling_ms.{stat}"), run.metric(f"handling_ms.{stat}")
+    full, mine = ref.metric(f"{key}.{stat}"), run.metric(f"{key}.{stat}")
     return full / mine if full and mine else None
+
+
+def step_speedup(run, ref, stat="p50"):
+    """The same ratio for the whole step (summary.step_ms): what the handling speed-up is worth to the
+    application; None for runs without step_ms."""
+    return speedup(run, ref, stat, STEP)
 
 
 def budgeted_with_reference(runs, all_runs):
@@ -70,3 +91,41 @@ def budgeted_with_reference(runs, all_runs):
         if ratio is not None:
             rows.append((run, ref, ratio))
     return rows
+
+
+# ---------------------------------------------------------------- the divergence noise floor
+
+DIVERGENCE = "divergence.rms_m.final"  # the divergence a figure and the claims compare with the floor
+
+
+def is_noise_floor(run):
+    """A noise-floor run: full, no budget, its initial state perturbed (an override `perturb.*`); its summary
+    divergence is full's own under that perturbation."""
+    return is_reference(run) and any(perturbation_override(o) for o in run.overrides)
+
+
+def floor_setup(run):
+    """setup(run) with the perturbation left out: the experiment a noise-floor run is the floor of. The
+    floor run's other overrides (the scene's --set strings) stay and must match."""
+    scene, seed, response, overrides = setup(run)
+    return scene, seed, response, tuple(o for o in overrides if not perturbation_override(o))
+
+
+def noise_floor(run, runs):
+    """The noise-floor run of run's experiment (same scene, seed, response and other overrides) among runs,
+    compared up to the same step (summary divergence.last_step, where both have one), or None. Prefers one
+    from the same sweep. A floor run has no floor of its own."""
+    if is_noise_floor(run):
+        return None
+    key, last = floor_setup(run), run.metric("divergence.last_step")
+    return closest(run, [r for r in runs if is_noise_floor(r) and floor_setup(r) == key
+                         and (last is None or r.metric("divergence.last_step") in (None, last))])
+
+
+def floor_multiple(run, floor, key=DIVERGENCE):
+    """The run's summary `key` over its noise floor's (how many floors it diverged), or None when either is
+    missing or the floor is 0."""
+    if floor is None:
+        return None
+    mine, theirs = run.metric(key), floor.metric(key)
+    return mine / theirs if mine is not None and theirs else None

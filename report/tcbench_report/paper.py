@@ -26,3 +26,4 @@ EVERY_NTH_N = 2       # handling collisions only every 2nd step makes resting co
 JITTER_FACTOR = 10.0      # plausible resting contact jitters at most 10x the reference's
 STANDING_FRACTION = 0.9   # a stack stands while its top centre keeps 90 % of its height
 SPEEDUP_MIN = 2.5         # "up to 3x" counts as reproduced from 2.5x (timings vary by machine)
+FLOOR_FACTOR = 10.0       # a divergence (or a difference of two) counts as above the noise from 10x the noise floor

@@ -1,6 +1,8 @@
 """Helpers shared by several figures (not a figure: the leading underscore)."""
 from collections import defaultdict
 
+from .. import pairing
+
 
 def by_scene(runs):
     """{scene: [runs]} in scene order."""
@@ -15,8 +17,27 @@ def width_for(count, per_item=0.7, minimum=6.0, maximum=40.0):
     return min(maximum, max(minimum, per_item * count + 2))
 
 
+def wrapped(method_label):
+    """A method label with settings, "interruptible(fine_tasks=true,reserve_apply=true)", one setting a line,
+    so neighbouring tick labels do not run into each other."""
+    return method_label.replace("(", "(\n").replace(",", ",\n")
+
+
+def broken(text, width=16):
+    """text with every line longer than width broken after an underscore ("interruptible_no_\nextrapolation"),
+    so a long method name under a narrow bar does not run into its neighbours."""
+    lines = []
+    for line in text.split("\n"):
+        while len(line) > width and "_" in line[1:width]:
+            cut = line.rindex("_", 1, width) + 1
+            lines.append(line[:cut])
+            line = line[cut:]
+        lines.append(line)
+    return "\n".join(lines)
+
+
 def tick_label(run, with_scene=True, with_response=False):
-    parts = ([run.scene] if with_scene else []) + [run.method_label]
+    parts = ([run.scene] if with_scene else []) + [wrapped(run.method_label)]
     if run.budget_kind != "none":
         parts.append(run.budget_label)
     if with_response:
@@ -109,6 +130,8 @@ def budget_bars(ax, ctx, runs, key, colours, note=None):
             extra = note(r) if note else None
             if extra:
                 text += f", {extra}"
+            if pairing.is_noise_floor(r):  # full under a perturb.* override: the divergence floor, not another full
+                text += ", noise-floor run (perturbed)"
             if len(members) > 1 and len({m.seed for m in members if m.method_label == r.method_label}) > 1:
                 text = f"seed {r.seed}: {text}"
             top = max([v for v in (value, ref_value) if v is not None and v > 0] or [min(values, default=1)])
