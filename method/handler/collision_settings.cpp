@@ -2,6 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
+#include "method/detection/spatial_hash.hpp"
 #include "sim/io/input_error.hpp"
 
 namespace tcb {
@@ -21,6 +24,25 @@ CollisionSettings resolve_collision_settings(const World& world, const Collision
   CollisionSettings s;
   s.detection.cell_size_m = desc.cell_size_m.value_or(average_edge_length(world));
   if (!(s.detection.cell_size_m > 0.0)) s.detection.cell_size_m = 1.0;  // a world of points only
+  // A cell size so small that a tet of the initial world already spans more
+  // cells than the hash takes (kMaxCellsPerBox) is bad input, not a run that
+  // goes unstable at its first step.
+  for (const Body& b : world.bodies) {
+    for (const Tet& t : b.mesh->tets) {
+      Vec3 lo = b.x_m[t[0]], hi = lo;
+      for (int k = 1; k < 4; ++k) {
+        lo = lo.cwiseMin(b.x_m[t[k]]);
+        hi = hi.cwiseMax(b.x_m[t[k]]);
+      }
+      double cells = 1.0;
+      for (int k = 0; k < 3; ++k) cells *= std::floor(hi[k] / s.detection.cell_size_m) - std::floor(lo[k] / s.detection.cell_size_m) + 1.0;
+      if (!(cells <= static_cast<double>(kMaxCellsPerBox)))
+        throw InputError(file, 0,
+                         fmt::format("collision.cell_size = {:g} m: a tet of object '{}' spans {:.3g} hash cells, more "
+                                     "than the {} a box may; use a larger cell size (or \"auto\": the mean edge, {:g} m)",
+                                     s.detection.cell_size_m, b.name, cells, kMaxCellsPerBox, average_edge_length(world)));
+    }
+  }
   s.detection.table_size = desc.table_size;
   s.detection.hash = desc.hash;
   s.dt_s = dt_s;

@@ -4,6 +4,7 @@
 /// the end of the line. Every parse failure throws InputError naming the file
 /// and the line of the offending token (or the last line at end of file).
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -29,6 +30,14 @@ class TokenReader {
   /// Consumes tokens up to the end of the current line (optional trailing fields).
   void skip_rest_of_line();
 
+  /// How many entries of `min_chars` characters each the unread text could
+  /// still hold, capped at `count`: what a header's count may reserve (a
+  /// count larger than the file can hold must not drive an allocation; the
+  /// read then fails at the end of the file, naming the line).
+  std::size_t reservable(std::int64_t count, std::size_t min_chars) const {
+    const std::size_t fit = (m_text.size() - m_pos) / std::max<std::size_t>(min_chars, 1);
+    return count < 0 ? 0 : std::min(static_cast<std::size_t>(count), fit);
+  }
   int line() const { return m_line; }
   [[noreturn]] void fail(int line, const std::string& problem) const;
   const std::string& file_name() const { return m_file_name; }

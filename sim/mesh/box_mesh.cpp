@@ -1,5 +1,7 @@
 #include "sim/mesh/box_mesh.hpp"
 
+#include <fmt/format.h>
+
 #include <charconv>
 #include <cmath>
 #include <stdexcept>
@@ -96,6 +98,13 @@ TetMesh make_generated_mesh(const std::string& source) {
   if (cells.empty()) cells = {1, 1, 1};
   for (double c : cells)
     if (c != std::floor(c) || c < 1 || c > 1000) throw std::invalid_argument("box cells must be whole numbers in 1..1000");
+  // 6 tets a cell. Past this the mesh alone takes gigabytes and the run's
+  // models several times more: refuse it here, before allocating, rather
+  // than die of bad_alloc later (the scaling scene's largest is ~1M tets).
+  const double tets = 6.0 * cells[0] * cells[1] * cells[2];
+  if (tets > kMaxGeneratedTets)
+    throw std::invalid_argument(fmt::format("box cells={}x{}x{} give {:.0f} tets; a generated box has at most {:.0f}",
+                                            cells[0], cells[1], cells[2], tets, kMaxGeneratedTets));
   return make_box_mesh(Vec3(size[0], size[1], size[2]), static_cast<int>(cells[0]), static_cast<int>(cells[1]),
                        static_cast<int>(cells[2]));
 }

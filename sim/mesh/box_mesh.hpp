@@ -23,6 +23,9 @@ bool is_generator_source(const std::string& source);
 /// Builds a mesh from a generator string:
 ///   box:size=SXxSYxSZ,cells=NXxNYxNZ      e.g. "box:size=1x0.05x1,cells=10x1x10"
 /// Throws std::invalid_argument with a one-line reason when it is malformed.
+/// The most tets a generated box may have (the cells' product x 6).
+inline constexpr double kMaxGeneratedTets = 60.0e6;
+
 TetMesh make_generated_mesh(const std::string& source);
 
 }  // namespace tcb

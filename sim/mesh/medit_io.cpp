@@ -60,7 +60,7 @@ TetMesh parse_medit(const std::string& file_name, std::string text, MeditReadSta
       have_vertices = true;
       vertices_line = line;
       const std::int64_t n = read_count(in, keyword);
-      vertices.reserve(n);
+      vertices.reserve(in.reservable(n, 8));  // "x y z r": at least 8 characters
       for (std::int64_t i = 0; i < n; ++i) {
         const double x = in.next_double("a vertex x coordinate");
         const double y = in.next_double("a vertex y coordinate");

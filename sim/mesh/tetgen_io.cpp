@@ -21,7 +21,7 @@ TetMesh parse_tetgen(const std::string& node_name, std::string node_text, const 
   const std::int64_t attributes = nodes.next_int("the attribute count", 0, 1000);
   const std::int64_t markers = nodes.next_int("the boundary-marker flag", 0, 1);
   std::vector<Vec3> vertices;
-  vertices.reserve(n);
+  vertices.reserve(nodes.reservable(n, 8));  // "i x y z": at least 8 characters
   std::int64_t base = 0;
   for (std::int64_t i = 0; i < n; ++i) {
     const int line = nodes.peek_line();
@@ -48,7 +48,7 @@ TetMesh parse_tetgen(const std::string& node_name, std::string node_text, const 
   if (per_tet != 4 && per_tet != 10) eles.fail(nodes_line, "nodes per tet must be 4 or 10");
   const std::int64_t regions = eles.next_int("the region-attribute flag", 0, 1);
   std::vector<Tet> tets;
-  tets.reserve(m);
+  tets.reserve(eles.reservable(m, 10));  // "i a b c d": at least 10 characters
   for (std::int64_t i = 0; i < m; ++i) {
     eles.next_int("a tet index", -kAnyInt, kAnyInt);
     Tet t{};

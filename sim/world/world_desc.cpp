@@ -53,6 +53,15 @@ World build_world(const WorldDesc& desc) {
     const auto mesh = load_cached(object, desc, cache);
     std::vector<Vec3> scaled(mesh->positions_m.size());
     for (std::size_t i = 0; i < scaled.size(); ++i) scaled[i] = object.scale * mesh->positions_m[i];
+    // Coordinates beyond the exact predicates' range (orient3d.hpp: products
+    // of three differences must stay normal doubles) are bad input, said here
+    // with the object's line, not later as a hash that cannot size its cells.
+    for (const Vec3& p : scaled)
+      if (!p.allFinite() || p.cwiseAbs().maxCoeff() > kMaxCoordinate_m)
+        throw InputError(desc.path.empty() ? object.name : desc.path.string(), object.source_line,
+                         fmt::format("object '{}': scale {} puts its coordinates beyond {:g} m, the range of the "
+                                     "exact geometric predicates",
+                                     object.name, object.scale, kMaxCoordinate_m));
     if (!object.trajectory.empty()) {
       std::shared_ptr<const Trajectory> path;
       try {

@@ -65,6 +65,10 @@ struct WorldDesc {
 /// Loads each distinct mesh once and builds the world. Throws InputError for a
 /// mesh that cannot be loaded (naming the mesh file, or the scene line when
 /// the problem is the source string itself).
+/// The largest coordinate magnitude a scaled mesh may have (m): the range in
+/// which orient3d stays exact (sim/geometry/orient3d.hpp).
+inline constexpr double kMaxCoordinate_m = 1e90;
+
 World build_world(const WorldDesc& desc);
 
 }  // namespace tcb

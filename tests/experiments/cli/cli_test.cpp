@@ -183,3 +183,19 @@ TEST_CASE("cli: check against a results directory that is not there is bad input
   CHECK_THAT(f.err, Catch::Matchers::Contains("is not a directory"));
   fs::remove(file);
 }
+
+TEST_CASE("cli: a scale that overflows the coordinates is bad input, naming the object (issue 15, defect 4)", "[cli]") {
+  const fs::path dir = fresh_dir("overflow");
+  const Result r = cli({"run", "cube_drop", "--set", "object.cube.scale=1e300", "--steps", "1", "--out", dir.string()});
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Catch::Matchers::Contains("object 'cube': scale 1e+300 puts its coordinates beyond 1e+90 m"));
+  CHECK_FALSE(fs::exists(dir));
+}
+
+TEST_CASE("cli: a cell size too small for the hash is bad input, not an unstable run (issue 15, defect 4)", "[cli]") {
+  const fs::path dir = fresh_dir("tiny_cells");
+  const Result r = cli({"run", "plates20", "--set", "collision.cell_size=1e-6", "--steps", "1", "--out", dir.string()});
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Catch::Matchers::Contains("collision.cell_size = 1e-06 m: a tet of object"));
+  CHECK_FALSE(fs::exists(dir));
+}

@@ -100,6 +100,9 @@ TEST_CASE("MEDIT: malformed files name the file, the line and the problem", "[io
       {"non-integral element reference", head + "Tetrahedra\n1\n1 2 3 4 0.5\n", 11, "found '0.5'"},
       {"non-integral vertex reference", "Dimension 3\nVertices\n1\n0 0 0 2.25\n", 4, "an integral value"},
       {"text reference", head + "Tetrahedra\n1\n1 2 3 4 x\n", 11, "found 'x'"},
+      // A header's count larger than the file can hold reserves nothing of it (issue 15, defect 3).
+      {"huge vertex count", "Dimension 3\nVertices\n2147483647\n0 0 0 0\n", 4, "file ends where a vertex x coordinate"},
+      {"huge tet count", head + "Tetrahedra\n2147483647\n1 2 3 4 0\n", 11, "file ends"},
   };
   for (const Case& c : cases) {
     INFO(c.name);
@@ -132,6 +135,12 @@ TEST_CASE("TetGen: 0- and 1-based files, 10-node tets, errors", "[io]") {
   }
   CHECK_THROWS_WITH(parse_tetgen("d.node", "4 3 0 0\n0 0 0 0\n5 1 0 0\n", "d.ele", ""),
                     Contains("d.node:3: point index 5 where 1 was expected"));
+  // Counts that the files cannot hold: an error at the end of the file, not bad_alloc.
+  CHECK_THROWS_WITH(parse_tetgen("e.node", "2147483647 3 0 0\n0 0 0 0\n", "e.ele", ""),
+                    Contains("e.node:2: file ends"));
+  CHECK_THROWS_WITH(parse_tetgen("f.node", "4 3 0 0\n0 0 0 0\n1 1 0 0\n2 0 1 0\n3 0 0 1\n", "f.ele",
+                                 "2147483647 4 0\n0 0 1 2 3\n"),
+                    Contains("f.ele:2: file ends"));
 }
 
 TEST_CASE("load_mesh: generators, files, unknown formats", "[io]") {
@@ -139,6 +148,8 @@ TEST_CASE("load_mesh: generators, files, unknown formats", "[io]") {
   CHECK_THROWS_WITH(load_mesh("box:size=1x2"), Contains("three numbers"));
   CHECK_THROWS_WITH(load_mesh("box:size=1x1x1,cells=0x1x1"), Contains("whole numbers"));
   CHECK_THROWS_WITH(load_mesh("box:colour=red"), Contains("unknown box parameter"));
+  // Within the per-axis range but beyond what fits: refused before allocating (issue 15, defect 3).
+  CHECK_THROWS_WITH(load_mesh("box:size=1x1x1,cells=1000x1000x1000"), Contains("6000000000 tets; a generated box has at most"));
   CHECK_THROWS_WITH(load_mesh("nowhere/missing.mesh"), Contains("missing.mesh: cannot open file"));
   CHECK_THROWS_WITH(load_mesh("mesh.stl"), Contains("unknown mesh format"));
 }
