@@ -19,7 +19,13 @@
 /// boundary triangles. Self-collision (bodies with self_collision, not
 /// passive): a vertex inside its own body's tets not incident to it
 /// (tet_inside.hpp); such points have no true depth (NaN, left out of depth
-/// errors and max_depth) and this is said once in `unmeasured`.
+/// errors and max_depth) and this is said once in `unmeasured`. Why none: the
+/// point lies on its own body's surface, so its distance to that surface is
+/// 0; a depth must leave out the point's own neighbourhood, and every cut we
+/// could draw (k rings of triangles, a rest-state radius r) is an arbitrary
+/// constant that, for penetrations deeper than the cut, measures the
+/// neighbourhood instead of the fold the point entered. Recall and precision
+/// of self-collision points are exact.
 /// Self-intersection of a surface is not checked (CGAL's check costs more
 /// than the query).
 /// Units: metres.

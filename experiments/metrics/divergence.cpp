@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace tcb {
@@ -73,6 +74,11 @@ Divergence compare_states(const StateView& run, const StateView& reference,
       out.orientation_drift_deg = std::max(out.orientation_drift_deg, rotation_angle_deg(x, a.centre, xr, r.centre, masses_kg[b]));
   }
   out.rms_m = vertices > 0 ? std::sqrt(sum2 / static_cast<double>(vertices)) : 0.0;
+  // A non-finite state is not "close": std::max would drop its NaNs.
+  if (!std::isfinite(sum2) || !std::isfinite(out.linear_momentum_diff_n_s + out.angular_momentum_diff_n_m_s)) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    out = Divergence{nan, nan, nan, nan, nan, nan};
+  }
   return out;
 }
 

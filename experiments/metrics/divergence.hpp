@@ -14,7 +14,8 @@
 ///   linear_momentum_diff_n_s    max over bodies of |p - p_ref|, p = sum m v
 ///   angular_momentum_diff_n_m_s max over bodies of |L - L_ref|, L = sum
 ///                       m (x - c) x v about the body's own centre
-/// Units SI. The same state gives exactly 0 in every field.
+/// Units SI. The same state gives exactly 0 in every field; a non-finite
+/// state gives NaN in every field.
 
 #include <vector>
 

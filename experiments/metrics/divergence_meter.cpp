@@ -5,21 +5,6 @@
 #include "sim/io/input_error.hpp"
 
 namespace tcb {
-namespace {
-
-// Through a float buffer, as the file does. Not `(double)(float)x` in one
-// loop: GCC 12.2 at -O3 vectorizes that round trip away (measured here: the
-// values came back unrounded), and a run compared with its own trajectory
-// then differed by float32's rounding.
-void as_float32(const std::vector<Vec3>& in, std::vector<float>& buffer, std::vector<Vec3>& out) {
-  buffer.resize(3 * in.size());
-  for (std::size_t i = 0; i < in.size(); ++i)
-    for (int k = 0; k < 3; ++k) buffer[3 * i + k] = static_cast<float>(in[i][k]);
-  out.resize(in.size());
-  for (std::size_t i = 0; i < in.size(); ++i) out[i] = Vec3(buffer[3 * i], buffer[3 * i + 1], buffer[3 * i + 2]);
-}
-
-}  // namespace
 
 DivergenceMeter::DivergenceMeter(const RunSetup& run) : m_reference_dir(run.reference_dir) {
   if (m_reference_dir.empty()) return;

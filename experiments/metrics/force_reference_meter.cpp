@@ -5,6 +5,7 @@
 
 #include "baselines/registry.hpp"
 #include "experiments/metrics/distribution.hpp"
+#include "method/detection/spatial_hash.hpp"
 
 namespace tcb {
 namespace {
@@ -28,8 +29,13 @@ std::vector<ColumnSpec> ForceReferenceMeter::columns() const {
           {"reference_ms", "wall time of the force reference (shadow full cycle and step); never handling time (ms)"}};
 }
 
+bool force_reference_due(const OracleSchedule& schedule, std::int64_t step) {
+  const std::int64_t k = schedule.every;
+  return k > 0 && step % k == (step / k) % k;
+}
+
 void ForceReferenceMeter::before_dynamics(StepContext& ctx) {
-  m_sampled = m_schedule.due(ctx.step) && m_settings != nullptr;
+  m_sampled = force_reference_due(m_schedule, ctx.step) && m_settings != nullptr;
   if (!m_sampled) return;
   const auto start = std::chrono::steady_clock::now();
   World shadow = clone_world(ctx.world);
@@ -42,7 +48,17 @@ void ForceReferenceMeter::before_dynamics(StepContext& ctx) {
     m_reference->init(shadow, *m_settings);
   }
   Budget unlimited = Budget::unlimited();
-  StepReport report = m_reference->step(shadow, unlimited);
+  StepReport report;
+  try {
+    report = m_reference->step(shadow, unlimited);
+  } catch (const HashOverflow&) {
+    // Full cannot handle this state (the run's own handler may still): no
+    // reference, an undefined sample, and the run goes on.
+    m_reference_failed = true;
+    m_reference_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return;
+  }
+  m_reference_failed = false;
   shadow.step(m_dt_s);
   m_reference_field = applied_field(shadow);
   m_reference_points = std::move(report.force_points);
@@ -51,6 +67,12 @@ void ForceReferenceMeter::before_dynamics(StepContext& ctx) {
 
 void ForceReferenceMeter::on_step(StepContext& ctx) {
   if (!m_sampled) return;
+  if (m_reference_failed) {
+    ++m_samples;
+    ++m_undefined;
+    ctx.row.set("reference_ms", m_reference_ms);
+    return;
+  }
   const ForceError e = compare_forces(applied_field(ctx.world), ctx.report.force_points, m_reference_field,
                                       m_reference_points);
   ++m_samples;

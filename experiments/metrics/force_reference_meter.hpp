@@ -1,6 +1,6 @@
 #pragma once
 /// The force reference (issue 20, --force-reference every:K): on sampled
-/// steps, a shadow `full` handler runs a whole collision cycle on a copy of
+/// steps (force_reference_due: one in K, in rotating phase), a shadow `full` handler runs a whole collision cycle on a copy of
 /// the state the method just handled (clone_world), and the copy is stepped
 /// with its forces; what contacts applied there (Body::applied_contact_force_n,
 /// so the definition holds for both response modes: explicit forces, or the
@@ -11,7 +11,8 @@
 ///
 /// Columns force_err_rel (relative L2 error of the per-vertex contact force
 /// field), force_missed and force_ghost (points), reference_ms; empty on
-/// steps not sampled. Summary `force_error` (null when nothing was sampled):
+/// steps not sampled. A sample where full's own cycle overflows the hash is
+/// undefined (counted in undefined_samples). Summary `force_error` (null when nothing was sampled):
 /// samples; relative_l2 {mean, p50, p95, p99, max} over samples where it is
 /// defined, undefined_samples (the reference applied nothing but the method
 /// did); angle_deg {mean, p50, p95, p99, max} over all compared points;
@@ -27,6 +28,13 @@
 
 namespace tcb {
 
+/// Whether step (1-based) is sampled under `every:K`: one step in each
+/// window of K, its position in the window rotating (the steps s with
+/// s mod K == (s / K) mod K: 11, 22, ..., 99, 100, 111, ... for K = 10; every
+/// step for K = 1), so a method with a period (every_nth n, a cycle spanning
+/// c steps) is seen in all its phases, not always in the same one.
+bool force_reference_due(const OracleSchedule& schedule, std::int64_t step);
+
 class ForceReferenceMeter final : public Meter {
  public:
   explicit ForceReferenceMeter(const RunSetup& run);
@@ -41,6 +49,7 @@ class ForceReferenceMeter final : public Meter {
   std::unique_ptr<CollisionHandler> m_reference;  // `full`, made on the first sample
   const CollisionSettings* m_settings;
   bool m_sampled = false;  // this step
+  bool m_reference_failed = false;  // full's cycle overflowed the hash on this sample
   ForceField m_reference_field;
   std::vector<ForcePoint> m_reference_points;
   double m_reference_ms = 0.0;

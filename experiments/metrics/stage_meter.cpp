@@ -9,6 +9,12 @@ std::string column_of(std::size_t stage) {
   return "stage_" + std::string(cost_stage_name(static_cast<CostStage>(stage))) + "_ms";
 }
 
+std::string work_column_of(std::size_t stage) {
+  return "stage_" + std::string(cost_stage_name(static_cast<CostStage>(stage))) + "_work";
+}
+
+constexpr std::size_t kApply = static_cast<std::size_t>(CostStage::Apply);  // charges no work
+
 }  // namespace
 
 std::vector<ColumnSpec> StageMeter::columns() const {
@@ -20,6 +26,10 @@ std::vector<ColumnSpec> StageMeter::columns() const {
                                                    "extrapolating, the handler's bookkeeping (ms)")
                                      : "handling time in the cycle's " + std::string(name) + " stage (ms)"});
   }
+  for (std::size_t s = 0; s < kApply; ++s)
+    out.push_back({work_column_of(s), "work units charged in the cycle's " +
+                                          std::string(cost_stage_name(static_cast<CostStage>(s))) +
+                                          " stage this step (they add up to work_units)"});
   out.push_back({"interrupted_stage",
                  "the stage the budget stopped the cycle in (0 prioritize, 1 hash_tets, 2 query_points, 3 "
                  "hash_surface, 4 border_depth, 5 propagate, 6 forces); empty when not interrupted"});
@@ -33,6 +43,7 @@ void StageMeter::on_step(StepContext& ctx) {
     m_ms_sum[s] += c.ms[s];
     m_ms_max[s] = std::max(m_ms_max[s], c.ms[s]);
     m_work_sum[s] += static_cast<double>(c.work[s]);
+    if (s < kApply) ctx.row.set(work_column_of(s), static_cast<std::int64_t>(c.work[s]));
   }
   if (c.interrupted >= 0) {
     ctx.row.set("interrupted_stage", std::int64_t{c.interrupted});

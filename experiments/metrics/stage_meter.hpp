@@ -1,7 +1,8 @@
 #pragma once
 /// Where handling time goes (issue 20's stage costs), from the handler's
 /// StepReport::stages (method/handler/stage_costs.hpp). Columns
-/// stage_<stage>_ms for every stage, apply included, and interrupted_stage
+/// stage_<stage>_ms for every stage, apply included, stage_<stage>_work for
+/// the cycle's stages (apply charges none), and interrupted_stage
 /// (the index of the stage the cycle stopped in, in the order of
 /// cost_stage_name(); empty when it was not interrupted). Summary `stages`:
 /// per stage {ms_mean (per step, every step counted), ms_max, work_mean,

@@ -21,6 +21,14 @@ bool get(std::istream& in, T& value) {
 
 }  // namespace
 
+void as_float32(const std::vector<Vec3>& in, std::vector<float>& buffer, std::vector<Vec3>& out) {
+  buffer.resize(3 * in.size());
+  for (std::size_t i = 0; i < in.size(); ++i)
+    for (int k = 0; k < 3; ++k) buffer[3 * i + k] = static_cast<float>(in[i][k]);
+  out.resize(in.size());
+  for (std::size_t i = 0; i < in.size(); ++i) out[i] = Vec3(buffer[3 * i], buffer[3 * i + 1], buffer[3 * i + 2]);
+}
+
 TrajectoryWriter::TrajectoryWriter(const std::filesystem::path& path, const World& world, int every)
     : m_file(path), m_every(every) {
   std::ostream& out = m_file.stream();
@@ -51,16 +59,19 @@ void TrajectoryWriter::write_step(const World& world) {
 
 TrajectoryReader::TrajectoryReader(const std::filesystem::path& path) : m_path(path), m_in(path, std::ios::binary) {
   if (!m_in) throw InputError(path.string(), 0, "cannot open the trajectory (was the run made with --trajectory?)");
+  std::error_code ec;
+  m_size = std::filesystem::file_size(path, ec);
   char magic[8] = {};
   std::uint32_t every = 0, bodies = 0;
   if (!m_in.read(magic, sizeof magic) || std::memcmp(magic, kMagic, sizeof kMagic) != 0)
     throw InputError(path.string(), 0, "not a tcbench trajectory (expected TCBTRJ01)");
-  if (!get(m_in, every) || !get(m_in, bodies) || every == 0)
+  if (!get(m_in, every) || !get(m_in, bodies) || every == 0 || every > (1u << 30) || bodies > m_size / 4)
     throw InputError(path.string(), 0, "truncated or invalid trajectory header");
   m_every = static_cast<int>(every);
   for (std::uint32_t b = 0; b < bodies; ++b) {
     std::uint32_t n = 0;
-    if (!get(m_in, n)) throw InputError(path.string(), 0, "truncated trajectory header");
+    if (!get(m_in, n) || n > m_size / sizeof(double))  // more masses than the file holds
+      throw InputError(path.string(), 0, "truncated or invalid trajectory header");
     std::vector<double> masses(n);
     if (!m_in.read(reinterpret_cast<char*>(masses.data()), static_cast<std::streamsize>(n * sizeof(double))))
       throw InputError(path.string(), 0, "truncated trajectory header");

@@ -153,6 +153,8 @@ class TableReader {
 
 /// Parses a whole TOML file; a syntax error is an InputError at its line.
 inline toml::table parse_toml_file(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw InputError(path.string(), 0, "is a directory, not a file");
   try {
     return toml::parse_file(path.string());
   } catch (const toml::parse_error& e) {

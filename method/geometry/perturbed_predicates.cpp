@@ -26,8 +26,10 @@ bool point_in_tet_perturbed(const Vec3& p, const Vec3& v0, const Vec3& v1, const
   // Inside iff p + delta is on the same side of all four faces (the faces of
   // tet_faces(): face k opposite vertex k): the inner side of every outward
   // face of a positively oriented tet (all -1), or of an inverted one (all
-  // +1). The four perturbed volumes sum to the tet's, independent of p, so a
-  // flat tet (volume 0) never has four equal signs: it contains nothing.
+  // +1). The four perturbed volumes sum to the tet's, independent of p (the
+  // faces' area vectors sum to zero, so the eps-coefficients cancel), so a
+  // flat tet (volume 0: the zero polynomial) never has four equal signs: it
+  // contains nothing.
   const int side = orient3d_perturbed_point(v1, v2, v3, p);
   if (side == 0) return false;
   if (orient3d_perturbed_point(v0, v3, v2, p) != side) return false;

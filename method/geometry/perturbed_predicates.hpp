@@ -10,12 +10,15 @@
 /// coefficients of eps, eps^2, eps^3. Consequences:
 /// - A point exactly on a face shared by two tets is inside exactly one of
 ///   them (they see the face with opposite normals); on an edge or vertex
-///   shared by a conforming fan of tets, inside exactly one of the fan.
+///   shared by a conforming fan of tets, inside exactly one of the fan. These
+///   hold while the tets around the point are not inverted: once a tet folds
+///   over its neighbour, their regions overlap and a point may lie in both.
 /// - The answer depends only on coordinates: never on hashing order, on which
 ///   tet is tested first, or on how a tet's vertices are numbered.
 /// - Point-in-tet and edge-crosses-triangle use the same delta, so a point
 ///   found inside an object always has its border edges cross that object's
-///   surface (a closed surface) an odd number of times.
+///   surface (a closed surface) an odd number of times: again for an object
+///   with no inverted tets (an inverted one's surface self-intersects).
 /// Degenerate elements: a flat tet (exact orientation 0) contains nothing; an
 /// inverted tet contains the region it bounds; a
 /// triangle with collinear vertices is crossed by nothing. Units: any (the

@@ -88,6 +88,10 @@ class Budget {
   mutable std::uint64_t m_polls = 0;
 };
 
+/// The largest work budget: 2^53 units, the last integer a double (the
+/// spec's value) holds exactly together with all below it.
+inline constexpr double kMaxWorkBudget = 9007199254740992.0;
+
 /// The number grammar of budget labels: a plain decimal >= 0 (digits and at
 /// most one point; no sign, exponent or blanks) filling all of `text`;
 /// std::nullopt otherwise.
@@ -99,10 +103,6 @@ std::string plain_decimal(double value);
 
 /// A budget as asked for, before any step: its kind and value, its one text
 /// form, and the Budget each step starts from. The text forms are "none",
-/// The largest work budget: 2^53 units, the last integer a double (the
-/// spec's value) holds exactly together with all below it.
-inline constexpr double kMaxWorkBudget = 9007199254740992.0;
-
 /// "ms:X" (X >= 0 milliseconds of wall clock) and "work:N" (N whole work
 /// units); they name budgets in sweeps, thresholds, summary.csv and run.json.
 struct BudgetSpec {
@@ -112,7 +112,8 @@ struct BudgetSpec {
   /// std::nullopt for anything but the three forms above (negative, not
   /// finite, a fractional work count, trailing text).
   static std::optional<BudgetSpec> parse(const std::string& text);
-  /// The text form; parse(label()) gives the same spec back.
+  /// The text form; parse(label()) gives the same spec back (for wall
+  /// budgets below 1e-4 ms written with 17 decimals: equal to 1e-17 ms).
   std::string label() const;
   /// "none", "wall_ms" or "work": run.json's budget.kind.
   std::string kind_name() const;

@@ -32,7 +32,8 @@ class AtomicFile {
 /// Writes the whole string to path atomically.
 void write_file_atomically(const std::filesystem::path& path, const std::string& content);
 
-/// Reads a whole file; throws InputError (no line) when it cannot be opened.
+/// Reads a whole file; throws InputError (no line) when it cannot be opened
+/// or is a directory.
 std::string read_file(const std::filesystem::path& path);
 
 }  // namespace tcb

@@ -78,8 +78,9 @@ def bars(runs):
 
 
 def mean(values):
-    """The mean of the numbers among values (None counts as 0: a stage a run did not report took no time)."""
-    values = [v or 0.0 for v in values]
+    """The mean of the numbers among values; None (not reported) is left out, never counted as 0. 0.0 when
+    no value is known (the bar then draws nothing for it)."""
+    values = [v for v in values if v is not None]
     return sum(values) / len(values) if values else 0.0
 
 

@@ -199,3 +199,23 @@ TEST_CASE("cli: a cell size too small for the hash is bad input, not an unstable
   CHECK_THAT(r.err, Catch::Matchers::Contains("collision.cell_size = 1e-06 m: a tet of object"));
   CHECK_FALSE(fs::exists(dir));
 }
+
+TEST_CASE("cli: a directory given where a file belongs is named as such (issue 15, defect 4)", "[cli]") {
+  const fs::path dir = fresh_dir("a_directory");
+  fs::create_directories(dir);
+  const fs::path with_ext = dir.string() + ".toml";  // resolved as a path, not a scene name
+  fs::create_directories(with_ext);
+  fs::create_directories(dir / "m.mesh");
+  for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
+           {"run", with_ext.string(), "--steps", "1", "--out", (dir / "out").string()},
+           {"sweep", with_ext.string(), "--out", (dir / "out").string()},
+           {"check", with_ext.string(), dir.string()},
+           {"mesh", "info", (dir / "m.mesh").string()}}) {
+    INFO(args[0]);
+    const Result r = cli(args);
+    CHECK(r.code == 2);
+    CHECK_THAT(r.err, Catch::Matchers::Contains("is a directory, not a file"));
+  }
+  fs::remove_all(dir);
+  fs::remove_all(with_ext);
+}

@@ -5,6 +5,8 @@
 
 #include <Eigen/Geometry>
 
+#include <cmath>
+
 using namespace tcb;
 
 namespace {
@@ -62,4 +64,10 @@ TEST_CASE("divergence of a translated, rotated and sped-up body, by hand", "[div
   // Uniform velocities carry no angular momentum about the centre, before and after.
   CHECK(d.angular_momentum_diff_n_m_s == Approx(0.0).margin(1e-12));
   CHECK_THROWS(compare_states({run.x, run.v}, {reference.x, reference.v}, {kMasses[0]}, kDynamic));
+  // A non-finite state is NaN everywhere, never a small divergence.
+  run.x[0][3] = Vec3(std::nan(""), 0, 0);
+  const Divergence bad = compare_states({run.x, run.v}, {reference.x, reference.v}, kMasses, kDynamic);
+  CHECK(std::isnan(bad.rms_m));
+  CHECK(std::isnan(bad.max_m));
+  CHECK(std::isnan(bad.com_drift_m));
 }

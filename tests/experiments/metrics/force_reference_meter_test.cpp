@@ -26,7 +26,7 @@ struct Result {
 };
 
 Result run(const std::string& method, const std::vector<std::string>& sets, BudgetSpec budget, bool reference,
-           std::int64_t steps = 12) {
+           std::int64_t steps = 12, std::int64_t every = 1) {
   const fs::path dir = fs::temp_directory_path() / ("tcbench_force_ref_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   RunOptions options;
@@ -34,7 +34,7 @@ Result run(const std::string& method, const std::vector<std::string>& sets, Budg
   options.budget = budget;
   options.steps = steps;
   options.out_dir = dir;
-  if (reference) options.force_reference = OracleSchedule{1};
+  if (reference) options.force_reference = OracleSchedule{every};
   const SceneDesc scene = load_scene_file(resolve_scene("plates20", default_scene_dirs()), sets);
   REQUIRE(run_scene(scene, options).status == "ok");
   Result r;
@@ -102,4 +102,18 @@ TEST_CASE("the force reference leaves the run unchanged", "[force_error][run]") 
   const Result without = run("interruptible", {}, {BudgetKind::Work, 60000}, false, 20);
   CHECK(with.kinetic_energy == without.kinetic_energy);
   CHECK(without.summary["force_error"].is_null());
+}
+
+TEST_CASE("force reference samples one step in K, in rotating phase", "[force_error]") {
+  const OracleSchedule ten{10};
+  std::vector<std::int64_t> sampled;
+  for (std::int64_t s = 1; s <= 120; ++s)
+    if (force_reference_due(ten, s)) sampled.push_back(s);
+  CHECK(sampled == std::vector<std::int64_t>{11, 22, 33, 44, 55, 66, 77, 88, 99, 100, 111});
+  for (std::int64_t s = 1; s <= 5; ++s) CHECK(force_reference_due(OracleSchedule{1}, s));
+  CHECK_FALSE(force_reference_due(OracleSchedule{0}, 10));
+  // every_nth n=2 under every:2 is seen computing and holding, not in one phase only.
+  const Result nth = run("every_nth", {"method.every_nth.n=2"}, {}, true, 16, 2);
+  CHECK(nth.summary["force_error"]["by_source"]["computed"]["points"].get<std::int64_t>() > 0);
+  CHECK(nth.summary["force_error"]["by_source"]["held"]["points"].get<std::int64_t>() > 0);
 }
