@@ -9,7 +9,9 @@ ours; the record names it in `ours` and the report flags it. A record's `per`
 judges its runs in parts, one table row each: per contact response (implicit or
 explicit penalty contact), so the reader sees which verdicts are the
 integrator's, and per method variant. A record's `evidence` appends what other figures' runs show (force
-error, divergence over its noise floor) to the measured text, split alike, and never changes the verdict.
+error, divergence over its noise floor) to the measured text, split alike and from the scenes of the runs the
+claim judges only, and never changes the verdict. `every_2nd_inferior` is judged on force error and divergence
+themselves (every_nth n = 2 against interruptible at the same work), the jitter shown beside them.
 """
 import math
 from dataclasses import dataclass, field
@@ -367,6 +369,13 @@ def every_nth_n(run):
     return n if isinstance(n, (int, float)) and n > 0 else None
 
 
+def papers_interruptible(run):
+    """The paper's method: interruptible with the paper's schedule (PAPER_TASKS; absent settings count as
+    the default)."""
+    return run.method == "interruptible" and all(run.settings.get(name, value) == value
+                                                 for name, value in PAPER_TASKS.items())
+
+
 def comparable_interruptible(run, ctx, has):
     """The paper's method (interruptible with PAPER_TASKS) in run's experiment at the relative budget (full/K
     or full-work/K) nearest every_nth's share of full's work (1/n), work budgets first; with `has(run)` true.
@@ -375,8 +384,7 @@ def comparable_interruptible(run, ctx, has):
     candidates = []
     for r in ctx.runs:
         k = relative_divisor(r.budget_label)
-        if (r.method == "interruptible" and k and has(r) and pairing.setup(r) == key
-                and all(r.settings.get(name, value) == value for name, value in PAPER_TASKS.items())):
+        if papers_interruptible(r) and k and has(r) and pairing.setup(r) == key:
             candidates.append((abs(math.log(k / n)) if n else 0.0, r.budget_kind != "work", k < (n or 0), r.name, r, k))
     if not candidates:
         return None, None
@@ -513,6 +521,143 @@ FLOOR_OURS = (f"FLOOR_FACTOR = {FLOOR_FACTOR:g}: two divergences (as multiples o
               "with its own verdict in the text and does not decide the row's")
 
 
+# ---------------------------------------------------------------- every second step against interruptible, same work
+
+EVERY_NTH_DEFAULTS = {"n": EVERY_NTH_N, "hold": True}  # method_label "every_nth": n = 2, forces held between cycles
+MIXED = "mixed"
+UNDECIDED = "undecided: within the noise floor"
+INFERIOR_TEXT = {HOLDS: "inferior", FAILS: "not inferior: interruptible is worse on both",
+                 MIXED: "mixed: force error and divergence disagree", UNDECIDED: UNDECIDED}
+INFERIOR_PARTS = {HOLDS: "holds", FAILS: "does not hold", MIXED: "mixed",
+                  UNDECIDED: "undecided (within the noise floor)"}
+FLOOR_RUN = "a noise-floor run (full, no budget, a perturb.* override, same setup)"
+
+
+def same_work_interruptible(run, ctx):
+    """The paper's method (interruptible, PAPER_TASKS) in run's experiment (same scene, seed, response and
+    overrides) with every_nth's share of full's work: a relative budget full-work/K, else full/K, with K = n.
+    Among several, one with both keys the claim reads first, then one from the same sweep and of the same
+    length. None when there is none."""
+    n, key = every_nth_n(run), pairing.setup(run)
+    candidates = [r for r in ctx.runs if papers_interruptible(r) and n and relative_divisor(r.budget_label) == n
+                  and pairing.setup(r) == key]
+    if not candidates:
+        return None
+    return min(candidates, key=lambda r: (
+        (not has_force_error(r)) + (not has_divergence(r)), r.budget_kind != "work", not (r.sweeps & run.sweeps),
+        r.record.get("steps") != run.record.get("steps"), r.name))
+
+
+def floor_multiple_or_why(run, ctx):
+    """(the run's divergence as a multiple of its noise floor, None) or (None, why not)."""
+    if not has_divergence(run):
+        return None, f"no {pairing.DIVERGENCE}"
+    floor = pairing.noise_floor(run, ctx.runs)
+    if floor is None:
+        return None, f"no noise floor: {FLOOR_RUN}"
+    multiple = pairing.floor_multiple(run, floor)
+    return (multiple, None) if multiple is not None else (None, f"its noise floor ({floor.name}) is 0 or unmeasured")
+
+
+def inferior_at_same_work(force_mine, force_theirs, multiple_mine, multiple_theirs):
+    """every_nth (mine) against interruptible at the same work (theirs), from the force error p50 and the
+    divergence as a multiple of the noise floor. Undecided when the divergences are fewer than FLOOR_FACTOR
+    floors apart; holds (inferior) when every_nth errs more and diverges more; does not hold when interruptible
+    does both; mixed when the two disagree (or the force errors are equal)."""
+    if not above_noise(multiple_mine, multiple_theirs):
+        return UNDECIDED
+    diverges_more = multiple_mine > multiple_theirs
+    if force_mine > force_theirs and diverges_more:
+        return HOLDS
+    if force_mine < force_theirs and not diverges_more:
+        return FAILS
+    return MIXED
+
+
+def jitter_text(run, ctx):
+    if run is None or run.metric("jitter") is None:
+        return "n/a"
+    ratio = jitter_ratio(run, ctx)
+    return f"{run.metric('jitter'):.3g} m/s" + (f" = {ratio:.3g}x full's" if ratio is not None else "")
+
+
+def inferior_pair(run, other, ctx, runs):
+    """(the text of one every_nth run against its interruptible run, verdict or None when not measured)."""
+    n = every_nth_n(run)
+    label = f"every_nth n={n:g}{named(run, runs)}"
+    if other is None:
+        budgets = f"full-work/{n:g} or full/{n:g}" if n else "the same share of full's work"
+        return (f"{label}: {UNMEASURED}: no interruptible run (paper's settings) at {budgets} in the same setup; "
+                f"jitter (RMS, shown, not judged) {jitter_text(run, ctx)}"), None
+    pair = (("every_nth", run), ("interruptible", other))
+    missing = {}  # why -> who: what keeps the pair from being judged, each reason once
+    for who, r in pair:
+        if not has_force_error(r):
+            missing.setdefault(f"no {FORCE_KEY}", []).append(who)
+    multiples = {}
+    for who, r in pair:
+        multiples[who], why = floor_multiple_or_why(r, ctx)
+        if why:
+            missing.setdefault(why, []).append(who)
+
+    def force(r):
+        return num(r.metric(FORCE_KEY))
+
+    def div(who):
+        return "n/a" if multiples[who] is None else f"{multiples[who]:.3g}x floor"
+
+    numbers = (f"force error p50 {force(run)} vs {force(other)}, divergence {div('every_nth')} vs "
+               f"{div('interruptible')}"
+               + (f" ({abs(multiples['every_nth'] - multiples['interruptible']):.3g} floors apart)"
+                  if None not in multiples.values() else "")
+               + f", jitter (RMS, shown, not judged) {jitter_text(run, ctx)} vs {jitter_text(other, ctx)}")
+    text = f"{label} vs interruptible at {other.budget_label}: {numbers}"
+    if missing:
+        reasons = "; ".join(" and ".join(who) + f": {why}" for why, who in missing.items())
+        return f"{text}: {UNMEASURED} ({reasons})", None
+    verdict = inferior_at_same_work(run.metric(FORCE_KEY), other.metric(FORCE_KEY), multiples["every_nth"],
+                                    multiples["interruptible"])
+    return f"{text}: {INFERIOR_TEXT[verdict]}", verdict
+
+
+def every_2nd_inferior(runs, ctx):
+    """Each every_nth (n = 2, its defaults) run against the paper's method at the same share of full's work,
+    judged on the force error p50 and the divergence over the noise floor (inferior_at_same_work); the
+    jitter is shown beside them. One verdict for the runs: theirs when they agree, else what share each has."""
+    if not runs:
+        return (f"no every_nth n={EVERY_NTH_N} run (its default settings) in the sweeps declaring the jitter figure",
+                UNMEASURED)
+    ordered = sorted(runs, key=lambda r: (r.scene, r.seed if r.seed is not None else -1, r.name))
+    notes, verdicts = [], []
+    for r in ordered:
+        text, verdict = inferior_pair(r, same_work_interruptible(r, ctx), ctx, runs)
+        notes.append(text)
+        if verdict is not None:
+            verdicts.append(verdict)
+    unmeasured = len(runs) - len(verdicts)
+    if not verdicts:
+        return "; ".join(notes), UNMEASURED
+    if len(set(verdicts)) == 1:
+        verdict = verdicts[0]
+    else:
+        shares = [f"{INFERIOR_PARTS[v]} in {verdicts.count(v)}" for v in INFERIOR_PARTS if v in verdicts]
+        verdict = f"partly: {', '.join(shares)} of {plural(len(verdicts), 'run')}"
+    if unmeasured:
+        verdict += f" ({plural(unmeasured, 'run')} {UNMEASURED})"
+    return "; ".join(notes), verdict
+
+
+INFERIOR_OURS = (
+    f"the rule: every_nth n={EVERY_NTH_N} (its defaults) against interruptible (the paper's settings) at the "
+    f"same share of full's work (full-work/{EVERY_NTH_N}, else full/{EVERY_NTH_N}), same scene, seed, response "
+    "and overrides; inferior (holds) when every_nth's force error p50 is higher AND its divergence "
+    f"({pairing.DIVERGENCE} over the noise floor) is at least FLOOR_FACTOR = {FLOOR_FACTOR:g} floors higher; "
+    "does not hold when interruptible is worse on both; undecided when the divergences are fewer than "
+    f"{FLOOR_FACTOR:g} floors apart; mixed otherwise; not measured without either run, a key or the noise floor",
+    "jitter is shown beside it, not judged (every_2nd_jitters judges it)",
+    "judged on the every_nth runs of the sweeps declaring the jitter figure (resting contact)")
+
+
 # ---------------------------------------------------------------- the table
 
 CLAIMS = [
@@ -560,6 +705,11 @@ CLAIMS = [
                 "settings) at the relative budget nearest 1/n of full's work; inferior when it errs more with no "
                 "less work, not inferior when it errs no more with no more work",
                 FLOOR_OURS)),
+    Claim(id="every_2nd_inferior",
+          text="Handling every second step is inferior to the interruptible method at the same work",
+          paper="every second step is inferior: resting contact jitters (no number)",
+          figure="jitter", select=Select(methods=("every_nth",), settings=EVERY_NTH_DEFAULTS),
+          metrics=EVIDENCE_KEYS + ("jitter",), rule=every_2nd_inferior, per=("response",), ours=INFERIOR_OURS),
     Claim(id="extrapolation_steadies",
           text="Force extrapolation avoids jitter: interruptible jitters less than interruptible_no_extrapolation "
                "at the same budget",
@@ -622,7 +772,11 @@ def judge(ctx):
     outcomes = []
     for claim in CLAIMS:
         judged = claim.select(scope(claim.figure))
-        evidence = [(e, e.select(scope(e.figure))) for e in claim.evidence]
+        # The evidence comes from the scenes of the runs the claim judges only: a resting-contact claim is
+        # not backed by another scene's runs (a self-collision scene's, say) that the other figures draw.
+        scenes = {r.scene for r in judged}
+        drawn = [(e, e.select(scope(e.figure))) for e in claim.evidence]
+        evidence = [(e, [r for r in runs if r.scene in scenes]) for e, runs in drawn]
         everything = judged + [r for _, runs in evidence for r in runs]
         for part, key in part_keys(claim, everything):
             runs = in_part(claim, key, judged)
@@ -634,6 +788,10 @@ def judge(ctx):
                         if getattr(modules.get(claim.figure), "SCOPE", "") == "declared" else "")
                 measured = "; ".join([measured] + [e.rule(in_part(claim, key, ev_runs), ctx)
                                                    for e, ev_runs in evidence])
+                left_out = sorted({r.scene for _, runs in drawn for r in in_part(claim, key, runs)} - scenes)
+                if left_out:
+                    measured += (f"; evidence from the scenes judged only ({', '.join(sorted(scenes)) or 'none'}): "
+                                 f"{', '.join(left_out)} left out")
             extra = [r for _, ev_runs in evidence for r in in_part(claim, key, ev_runs) if r not in runs]
             outcomes.append(Outcome(claim, measured, verdict, runs + extra, part))
     return outcomes

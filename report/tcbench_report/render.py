@@ -141,7 +141,8 @@ def page(blocks):
                     cls = ""
                     if k == b.verdict_column and c != NOT_MEASURED:
                         cls = (" class='yes'" if str(c).startswith("holds") and "inconclusive" not in str(c) else
-                               " class='part'" if str(c).startswith(("partly", "holds", "inconclusive"))
+                               " class='part'" if str(c).startswith(("partly", "holds", "inconclusive", "mixed",
+                                                                     "undecided"))
                                else " class='no'")
                     cells.append(f"<td{cls}>{e(str(c))}</td>")
                 out.append("<tr>" + "".join(cells) + "</tr>")

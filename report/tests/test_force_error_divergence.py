@@ -272,19 +272,62 @@ class EveryNthEvidence(unittest.TestCase):
         self.assertIn("as a multiple of the noise floor): n/a (no every_nth n=2 run with summary.divergence)",
                       o.measured)
 
-    def test_no_floor_no_comparison_and_no_jitter_sweep(self):
-        runs = [r for r in self.setups() if not r.name.startswith(("floor", "i2"))]
-        for r in runs:
-            r.figures.clear()  # no sweep declares the jitter figure: the verdict is not measured
-        runs = [r for r in runs if not r.name.startswith("i10")]
+    def test_no_floor_and_no_comparison(self):
+        runs = [r for r in self.setups() if not r.name.startswith(("floor", "i2", "i10"))]
         o = outcome(judged(runs), "every_2nd_jitters")
-        self.assertEqual(o.verdict, UNMEASURED)
-        self.assertEqual(o.part, "implicit response")  # the evidence alone still gives the row
-        self.assertIn("jitter (what the verdict judges): not measured in the runs of sweeps declaring the jitter "
-                      "figure", o.measured)
+        self.assertEqual(o.verdict, HOLDS)
         self.assertIn("every_nth n=2 0.12 vs no interruptible run (paper's settings, relative budget, same setup) "
                       "with force error: n/a", o.measured)
         self.assertIn("every_nth n=2 0.0002 m (no noise-floor run) vs no interruptible run", o.measured)
+
+    def test_no_jitter_sweep_no_evidence(self):
+        runs = self.setups()
+        for r in runs:
+            r.figures.clear()  # no sweep declares the jitter figure: nothing judged, no scene to take evidence from
+        [o] = [o for o in judged(runs) if o.claim.id == "every_2nd_jitters"]
+        self.assertEqual(o.verdict, UNMEASURED)
+        self.assertIn("jitter (what the verdict judges): not measured in the runs of sweeps declaring the jitter "
+                      "figure", o.measured)
+        self.assertIn("n/a (no every_nth n=2 run with summary.force_error)", o.measured)
+        self.assertIn("evidence from the scenes judged only (none): plates20 left out", o.measured)
+
+    def test_the_evidence_responds_per_mode_where_only_it_has_runs(self):
+        runs = self.setups() + [r for r in self.setups("explicit", ["collision.response=explicit"])
+                                if not r.name.startswith("full")]
+        runs[-4].figures.clear()  # the explicit every_nth run is no jitter sweep's: explicit only has evidence
+        outcomes = judged(runs)
+        o = outcome(outcomes, "every_2nd_jitters", "explicit response")  # plates20 is judged (implicit)
+        self.assertEqual(o.verdict, UNMEASURED)
+        self.assertIn("every_nth n=2 0.12 vs interruptible at full-work/2 0.03 (inferior: yes)", o.measured)
+
+    def test_evidence_from_the_scenes_judged_only(self):
+        # a self-collision scene's runs (no jitter sweep) are drawn by the force-error and divergence figures,
+        # but back no resting-contact claim
+        fold = {"scene": "folding_bar"}
+        runs = self.setups() + [
+            run("i3", budget="full-work/3", settings=PAPER_TASKS, jitter=0.02, figures=JITTER, fe=force(0.166),
+                div=diverged(1.7e-4)),
+            run("n3", "interruptible_no_extrapolation", budget="full-work/3", settings=PAPER_TASKS, jitter=0.03,
+                figures=JITTER, fe=force(0.25), div=diverged(4e-4))] + [
+            run("fold floor", "full", div=diverged(1e-6), overrides=[PERTURB], **fold),
+            run("fold nth", "every_nth", settings={"n": 2}, fe=force(0.7), div=diverged(9e-3), **fold),
+            run("fold i2", budget="full-work/2", settings=PAPER_TASKS, fe=force(0.01), div=diverged(2e-6), **fold),
+            run("fold i3", budget="full-work/3", settings=PAPER_TASKS, fe=force(0.6), div=diverged(7e-3), **fold),
+            run("fold n3", "interruptible_no_extrapolation", budget="full-work/3", settings=PAPER_TASKS,
+                fe=force(0.8), div=diverged(8e-3), **fold)]
+        outcomes = judged(runs)
+        for claim_id in ("every_2nd_jitters", "extrapolation_steadies", "every_2nd_inferior"):
+            for o in (o for o in outcomes if o.claim.id == claim_id):
+                self.assertNotIn("0.7", o.measured, claim_id)
+                self.assertNotIn("9e+03x", o.measured, claim_id)
+                self.assertNotIn("0.6 with extrapolation", o.measured, claim_id)
+                self.assertFalse([r.name for r in o.runs if r.name.startswith("fold")], claim_id)
+        o = outcome(outcomes, "every_2nd_jitters")
+        self.assertIn("every_nth n=2 0.12 vs interruptible at full-work/2 0.03 (inferior: yes)", o.measured)
+        self.assertIn("evidence from the scenes judged only (plates20): folding_bar left out", o.measured)
+        o = outcome(outcomes, "extrapolation_steadies")
+        self.assertIn("full-work/3: 0.166 with extrapolation, 0.25 without (lower with: yes)", o.measured)
+        self.assertIn("evidence from the scenes judged only (plates20): folding_bar left out", o.measured)
 
 
 class ExtrapolationEvidence(unittest.TestCase):
