@@ -98,13 +98,20 @@ scene = "cube_drop"
 method = "full"
 metric = "recall_min"
 min = 0.0
+
+[[threshold]]
+scene = "plates20"
+method = "full"
+metric = "recal_min"
+min = 0.0
 )"));
   const std::vector<CheckRow> rows = check_thresholds(t, dir);
-  REQUIRE(rows.size() == 3);
+  REQUIRE(rows.size() == 4);
   CHECK(rows[0].verdict == "FAIL");  // 0.8 < 0.9
   CHECK(*rows[0].value == 0.8);
   CHECK(rows[1].verdict == "missing");  // null: nothing measured must not pass
   CHECK(rows[2].verdict == "missing");  // no such run
+  CHECK(rows[3].verdict == "unknown metric");  // a misspelling, not a figure that was not measured (issue 15, defect 7)
   CHECK(cli({"check", (fs::temp_directory_path() / ("tcbench_thresholds_" + std::to_string(::getpid()) + ".toml")).string(),
              dir.string()}) == 1);
   // A method's label tells runs with other settings apart.
