@@ -105,26 +105,6 @@ const RunKey* reference_of(const RunKey& run, const std::string& label, const st
 
 }  // namespace
 
-namespace {
-
-// Whether the dotted key exists in the run's summary at all (null or not):
-// a key no run has is a misspelling, not a figure that was not measured.
-bool summary_has_key(const nlohmann::json& record, const std::string& dotted) {
-  const nlohmann::json* node = &record.at("summary");
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t dot = dotted.find('.', start);
-    const std::string key = dotted.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
-    if (!node->is_object() || !node->contains(key)) return false;
-    node = &(*node)[key];
-    if (dot == std::string::npos) return true;
-    if (node->is_null()) return true;  // a null group: its members were not measured
-    start = dot + 1;
-  }
-}
-
-}  // namespace
-
 std::vector<CheckRow> check_thresholds(const std::vector<Threshold>& thresholds, const std::filesystem::path& dir) {
   // Run directories: DIR and every folder beneath it holding a complete
   // run.json (a sweep's DIR/runs/*, reproduce's DIR/<sweep>/runs/*), named by
@@ -157,7 +137,8 @@ std::vector<CheckRow> check_thresholds(const std::vector<Threshold>& thresholds,
       if (run.scene != th.scene || run.method_label != th.method || run.budget != th.budget) continue;
       if ((th.seed && run.seed != *th.seed) || (th.response && run.response != *th.response)) continue;
       matched = true;
-      CheckRow row{&th, run.name, "", summary_metric(*run.record, th.metric), ""};
+      const SummaryLookup found = find_summary_metric(*run.record, th.metric);
+      CheckRow row{&th, run.name, "", found.value, ""};
       bool inconclusive = (th.wall_metric || th.wall_budget) && run.noisy;
       if (th.relative_to) {
         const RunKey* ref = reference_of(run, *th.relative_to, runs);
@@ -169,7 +150,7 @@ std::vector<CheckRow> check_thresholds(const std::vector<Threshold>& thresholds,
         row.value = row.value && reference && *reference != 0.0 ? std::optional(*row.value / *reference) : std::nullopt;
       }
       const bool ok = row.value && (!th.min || *row.value >= *th.min) && (!th.max || *row.value <= *th.max);
-      row.verdict = !summary_has_key(*run.record, th.metric) ? "unknown metric"
+      row.verdict = !found.known ? "unknown metric"
                     : !row.value                               ? "missing"
                     : inconclusive                             ? "inconclusive"
                     : ok                                       ? "pass"

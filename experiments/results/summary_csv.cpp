@@ -66,19 +66,23 @@ std::optional<Json> read_complete_run(const std::filesystem::path& run_dir) {
   return std::nullopt;
 }
 
-std::optional<double> summary_metric(const Json& run, const std::string& dotted) {
+SummaryLookup find_summary_metric(const Json& run, const std::string& dotted) {
   const Json* node = &run.at("summary");
   std::size_t start = 0;
   while (true) {
     const std::size_t dot = dotted.find('.', start);
     const std::string key = dotted.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
-    if (!node->is_object() || !node->contains(key)) return std::nullopt;
+    if (!node->is_object() || !node->contains(key)) return {false, std::nullopt};
     node = &(*node)[key];
     if (dot == std::string::npos) break;
+    if (node->is_null()) return {true, std::nullopt};  // a null group: its members were not measured
     start = dot + 1;
   }
-  if (!node->is_number()) return std::nullopt;
-  return node->get<double>();
+  return {true, node->is_number() ? std::optional<double>(node->get<double>()) : std::nullopt};
+}
+
+std::optional<double> summary_metric(const Json& run, const std::string& dotted) {
+  return find_summary_metric(run, dotted).value;
 }
 
 void write_summary_csv(const std::filesystem::path& path, const std::vector<SummaryRow>& rows) {

@@ -27,8 +27,16 @@ struct SummaryRow {
 /// nullopt otherwise: `sweep --resume` reruns such a run.
 std::optional<nlohmann::json> read_complete_run(const std::filesystem::path& run_dir);
 
-/// The value of a summary metric by dotted name ("handling_ms.p50"); nullopt
-/// when absent or null.
+/// A summary metric by dotted name ("handling_ms.p50"): whether the summary
+/// has that key at all (null counts, as does a member of a null group: not
+/// measured), and its value (nullopt when absent, null or not a number).
+struct SummaryLookup {
+  bool known = false;
+  std::optional<double> value;
+};
+SummaryLookup find_summary_metric(const nlohmann::json& run, const std::string& dotted);
+
+/// find_summary_metric(run, dotted).value.
 std::optional<double> summary_metric(const nlohmann::json& run, const std::string& dotted);
 
 void write_summary_csv(const std::filesystem::path& path, const std::vector<SummaryRow>& rows);

@@ -21,10 +21,19 @@ bool get(std::istream& in, T& value) {
 
 }  // namespace
 
-void as_float32(const std::vector<Vec3>& in, std::vector<float>& buffer, std::vector<Vec3>& out) {
+namespace {
+
+// x, y, z of every vector as float32, in the file's layout.
+void to_float_buffer(const std::vector<Vec3>& in, std::vector<float>& buffer) {
   buffer.resize(3 * in.size());
   for (std::size_t i = 0; i < in.size(); ++i)
     for (int k = 0; k < 3; ++k) buffer[3 * i + k] = static_cast<float>(in[i][k]);
+}
+
+}  // namespace
+
+void as_float32(const std::vector<Vec3>& in, std::vector<float>& buffer, std::vector<Vec3>& out) {
+  to_float_buffer(in, buffer);
   out.resize(in.size());
   for (std::size_t i = 0; i < in.size(); ++i) out[i] = Vec3(buffer[3 * i], buffer[3 * i + 1], buffer[3 * i + 2]);
 }
@@ -49,9 +58,7 @@ void TrajectoryWriter::write_step(const World& world) {
   put(out, static_cast<std::int64_t>(world.step_index));
   for (const Body& b : world.bodies) {
     for (const std::vector<Vec3>* field : {&b.x_m, &b.v_m_per_s}) {
-      m_scratch.resize(3 * field->size());
-      for (std::size_t i = 0; i < field->size(); ++i)
-        for (int k = 0; k < 3; ++k) m_scratch[3 * i + k] = static_cast<float>((*field)[i][k]);
+      to_float_buffer(*field, m_scratch);
       out.write(reinterpret_cast<const char*>(m_scratch.data()), static_cast<std::streamsize>(m_scratch.size() * sizeof(float)));
     }
   }
