@@ -45,6 +45,28 @@ Json settings_json(const MethodSettings& settings) {
   return out;
 }
 
+Json jitter_json(const Jitter& j) {
+  return {{"position_m", j.position_m},
+          {"velocity_m_per_s", j.velocity_m_per_s},
+          {"rotation_rad", j.rotation_rad},
+          {"material_rel", j.material_rel}};
+}
+
+Json vec3_json(const Vec3& v) { return Json::array({v.x(), v.y(), v.z()}); }
+
+/// What [perturb] asked for and what each body drew (perturbation.hpp).
+Json perturbation_json(const Perturbation& asked, const std::vector<BodyPerturbation>& drawn, const World& world) {
+  Json bodies = Json::array();
+  for (std::size_t b = 0; b < drawn.size(); ++b)
+    bodies.push_back({{"name", world.bodies[b].name},
+                      {"jitter", jitter_json(drawn[b].jitter)},
+                      {"offset_m", vec3_json(drawn[b].offset_m)},
+                      {"velocity_m_per_s", vec3_json(drawn[b].velocity_m_per_s)},
+                      {"rotation_rad", vec3_json(drawn[b].rotation_rad)},
+                      {"youngs_modulus_factor", drawn[b].youngs_modulus_factor}});
+  return {{"jitter", jitter_json(asked.global)}, {"bodies", bodies}};
+}
+
 std::vector<std::string> scene_overrides(const std::vector<std::string>& overrides) {
   std::vector<std::string> scene_only;
   for (const std::string& o : overrides)
@@ -64,7 +86,7 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
   const MethodSettings settings = table != scene.methods.end() ? table->second : MethodSettings(method.settings);
   std::unique_ptr<CollisionHandler> handler = method.make(settings);
   World world = build_world(scene.world);
-  const std::vector<Vec3> offsets = perturb_world(world, scene.perturb, options.seed);
+  const std::vector<BodyPerturbation> perturbed = perturb_world(world, scene.perturb, options.seed);
 
   std::optional<ScopedPin> pin;  // undone when the run returns
   if (options.pin_cpu) {
@@ -158,9 +180,12 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
   run["dt"] = scene.world.dt_s;
   run["response"] = scene.collision.response_mode == ResponseMode::Implicit ? "implicit" : "explicit";
   run["seed"] = options.seed;
-  Json drawn = Json::array();
-  for (const Vec3& o : offsets) drawn.push_back({o.x(), o.y(), o.z()});
-  run["perturbation"] = {{"position_m", scene.perturb.position_m}, {"offsets_m", drawn}};
+  run["perturbation"] = perturbation_json(scene.perturb, perturbed, world);
+  run["collision"] = {{"cell_size_m", collision.detection.cell_size_m},
+                      {"mean_edge_m", collision.mean_edge_m},
+                      {"table_size", collision.detection.table_size},
+                      {"tets", collision.tets},
+                      {"hash", collision.detection.hash == HashFunction::Paper ? "paper" : "mixed"}};
   run["pin"] = options.pin_cpu ? Json(*options.pin_cpu) : Json(nullptr);
   run["oracle"] = setup.oracle.label();
   run["oracle_volume"] = setup.overlap.label();

@@ -61,8 +61,34 @@ Material read_material(TableReader& object, const std::string& context, const Or
   return m;
 }
 
+/// "auto" (1) or "auto*K" (K, finite and > 0); nullopt for anything else.
+std::optional<double> auto_factor(const std::string& text) {
+  if (text == "auto") return 1.0;
+  if (text.rfind("auto*", 0) != 0 || text.size() == 5) return std::nullopt;
+  const std::string k = text.substr(5);
+  char* end = nullptr;
+  const double factor = std::strtod(k.c_str(), &end);
+  if (end != k.c_str() + k.size() || !(factor > 0.0) || !std::isfinite(factor)) return std::nullopt;
+  return factor;
+}
+
+/// A [perturb] table, global or an object's: the keys it sets.
+JitterOverride read_jitter(const toml::table& table, const std::string& context, const Origins& file) {
+  TableReader r(table, context, file);
+  JitterOverride j;
+  if (r.number("position")) j.position_m = r.non_negative("position", 0.0);
+  if (r.number("velocity")) j.velocity_m_per_s = r.non_negative("velocity", 0.0);
+  if (r.number("rotation")) j.rotation_rad = r.non_negative("rotation", 0.0);
+  if (r.number("material")) {
+    j.material_rel = r.non_negative("material", 0.0);
+    if (!(*j.material_rel < 1.0)) r.fail("material", "must be below 1 (Young's modulus is scaled by 1 + material * u, u in [-1, 1))");
+  }
+  r.finish();
+  return j;
+}
+
 ObjectDesc read_object(const toml::table& table, std::size_t index, const std::filesystem::path& path,
-                       const Origins& file) {
+                       const Origins& file, Perturbation& perturb) {
   ObjectDesc o;
   TableReader r(table, "object[" + std::to_string(index) + "]", file);
   o.source_line = where_of(table, file).line;
@@ -99,6 +125,10 @@ ObjectDesc read_object(const toml::table& table, std::size_t index, const std::f
     o.stack.stagger_m = s.vec3("stagger").value_or(Vec3::Zero());
     if (o.stack.stagger_m[o.stack.axis] != 0.0) s.fail("stagger", "must be 0 along the stacking axis");
     s.finish();
+  }
+  if (const toml::table* p = named.table("perturb")) {
+    if (o.passive) named.fail("perturb", "passive objects are not perturbed (a driven object follows its trajectory, a fixed one is the scene's frame)");
+    perturb.objects[o.name] = read_jitter(*p, context + ".perturb", file);
   }
   named.finish();
   return o;
@@ -205,11 +235,14 @@ SceneDesc parse_scene(const std::string& text, const std::filesystem::path& path
   if (const toml::table* c = top.table("collision")) {
     TableReader r(*c, "collision", file);
     if (const toml::node* cell = r.node("cell_size")) {
-      if (cell->is_string() && *cell->value<std::string>() == "auto") {
+      if (cell->is_string()) {
+        const auto factor = auto_factor(*cell->value<std::string>());
+        if (!factor) r.fail("cell_size", "must be \"auto\", \"auto*K\" (K > 0 times the mean tet edge) or a positive length");
         scene.collision.cell_size_m.reset();
+        scene.collision.cell_size_auto_factor = *factor;
       } else {
         const auto size = r.number("cell_size");
-        if (!(*size > 0.0)) r.fail("cell_size", "must be \"auto\" or a positive length");
+        if (!(*size > 0.0)) r.fail("cell_size", "must be \"auto\", \"auto*K\" or a positive length");
         scene.collision.cell_size_m = size;
       }
     }
@@ -218,8 +251,15 @@ SceneDesc parse_scene(const std::string& text, const std::filesystem::path& path
       else if (*hash == "paper") scene.collision.hash = HashFunction::Paper;
       else r.fail("hash", "must be \"mixed\" or \"paper\"");
     }
-    scene.collision.table_size =
-        static_cast<std::size_t>(r.integer("table_size", 0, std::int64_t(1) << 32).value_or(0));
+    if (const toml::node* table = r.node("table_size"); table && table->is_string()) {
+      const auto factor = auto_factor(*table->value<std::string>());
+      if (!factor) r.fail("table_size", "must be \"auto\", \"auto*K\" (the next prime above 2 K tets + 1) or a whole number of buckets");
+      scene.collision.table_size = 0;
+      scene.collision.table_size_auto_factor = *factor;
+    } else {
+      scene.collision.table_size =
+          static_cast<std::size_t>(r.integer("table_size", 0, std::int64_t(1) << 32).value_or(0));
+    }
     scene.collision.response_stiffness_n_per_m =
         r.non_negative("response_stiffness", scene.collision.response_stiffness_n_per_m);
     scene.collision.damping_n_s_per_m = r.non_negative("damping", scene.collision.damping_n_s_per_m);
@@ -260,11 +300,7 @@ SceneDesc parse_scene(const std::string& text, const std::filesystem::path& path
     }
     r.finish();
   }
-  if (const toml::table* p = top.table("perturb")) {
-    TableReader r(*p, "perturb", file);
-    scene.perturb.position_m = r.non_negative("position", scene.perturb.position_m);
-    r.finish();
-  }
+  if (const toml::table* p = top.table("perturb")) scene.perturb.global = read_jitter(*p, "perturb", file).over(scene.perturb.global);
   if (const toml::table* methods = top.table("method")) {
     TableReader all(*methods, "method", file);
     for (auto&& [key, node] : *methods) {
@@ -285,7 +321,7 @@ SceneDesc parse_scene(const std::string& text, const std::filesystem::path& path
       top.fail("object", "must be an array of tables: write [[object]]");
     std::set<std::string> names;
     for (std::size_t i = 0; i < array->size(); ++i) {
-      ObjectDesc o = read_object(*(*array)[i].as_table(), i, path, file);
+      ObjectDesc o = read_object(*(*array)[i].as_table(), i, path, file, scene.perturb);
       if (!names.insert(o.name).second)
         throw InputError(file.file, o.source_line, "two objects are named '" + o.name + "'");
       scene.world.objects.push_back(std::move(o));

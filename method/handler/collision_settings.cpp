@@ -22,7 +22,8 @@ double average_edge_length(const World& world) {
 CollisionSettings resolve_collision_settings(const World& world, const CollisionDesc& desc, double dt_s,
                                              const std::string& file) {
   CollisionSettings s;
-  s.detection.cell_size_m = desc.cell_size_m.value_or(average_edge_length(world));
+  s.mean_edge_m = average_edge_length(world);
+  s.detection.cell_size_m = desc.cell_size_m.value_or(desc.cell_size_auto_factor * s.mean_edge_m);
   if (!(s.detection.cell_size_m > 0.0)) s.detection.cell_size_m = 1.0;  // a world of points only
   // A cell size so small that a tet of the initial world already spans more
   // cells than the hash takes (kMaxCellsPerBox) is bad input, not a run that
@@ -40,10 +41,19 @@ CollisionSettings resolve_collision_settings(const World& world, const Collision
         throw InputError(file, 0,
                          fmt::format("collision.cell_size = {:g} m: a tet of object '{}' spans {:.3g} hash cells, more "
                                      "than the {} a box may; use a larger cell size (or \"auto\": the mean edge, {:g} m)",
-                                     s.detection.cell_size_m, b.name, cells, kMaxCellsPerBox, average_edge_length(world)));
+                                     s.detection.cell_size_m, b.name, cells, kMaxCellsPerBox, s.mean_edge_m));
     }
   }
-  s.detection.table_size = desc.table_size;
+  for (const Body& b : world.bodies) s.tets += b.mesh->tet_count();
+  // 2 K tets + 1, rounded down before the prime search: K = 1 is the
+  // detector's own default, next_prime(2 tets + 1).
+  const double automatic = std::floor(2.0 * desc.table_size_auto_factor * static_cast<double>(s.tets)) + 1.0;
+  if (!desc.table_size && !(automatic <= 4294967296.0))
+    throw InputError(file, 0, fmt::format("collision.table_size = \"auto*{:g}\" asks for {:.3g} buckets; at most 2^32",
+                                          desc.table_size_auto_factor, automatic));
+  s.detection.table_size =
+      desc.table_size ? desc.table_size
+                      : static_cast<std::size_t>(next_prime(static_cast<std::uint64_t>(automatic)));
   s.detection.hash = desc.hash;
   s.dt_s = dt_s;
   s.response_mode = desc.response_mode;

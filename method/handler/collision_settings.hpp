@@ -28,8 +28,10 @@ struct CollisionPairDesc {
 /// The [collision] table as plain data.
 struct CollisionDesc {
   std::optional<double> cell_size_m;  ///< nullopt = "auto" (average edge length)
+  double cell_size_auto_factor = 1.0; ///< "auto*K": K times the average edge length
   HashFunction hash = HashFunction::Mixed;  ///< "mixed", or "paper" (Teschner et al. 2003)
-  std::size_t table_size = 0;         ///< 0 = automatic (a prime above twice the tet count)
+  std::size_t table_size = 0;         ///< 0 = automatic (the next prime above 2 K tets + 1)
+  double table_size_auto_factor = 1.0;  ///< K of the automatic table size ("auto*K")
   double response_stiffness_n_per_m = 1.0e4;
   double damping_n_s_per_m = 0.0;
   double friction = 0.3;
@@ -40,7 +42,9 @@ struct CollisionDesc {
 };
 
 struct CollisionSettings {
-  DetectionSettings detection;
+  DetectionSettings detection;  ///< cell and table sizes resolved (never 0)
+  double mean_edge_m = 0.0;     ///< the average edge length "auto" refers to
+  std::size_t tets = 0;         ///< of all bodies: the table's automatic size counts them
   double dt_s = 1.0e-3;  ///< the scene's step: bounds explicit damping and friction
   ResponseMode response_mode = ResponseMode::Implicit;
   std::size_t body_count = 0;

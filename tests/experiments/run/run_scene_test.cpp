@@ -214,6 +214,53 @@ TEST_CASE("runs are deterministic apart from timings", "[run]") {
   fs::remove_all(b);
 }
 
+TEST_CASE("seeds: without jitter every seed is the same run; with it the same seed repeats and others differ",
+          "[run][perturb]") {
+  const auto run_rows = [](const std::string& name, std::uint64_t seed, const std::vector<std::string>& sets) {
+    const fs::path dir = fresh_dir(name);
+    RunOptions options;
+    options.out_dir = dir;
+    options.seed = seed;
+    options.steps = 30;
+    const SceneDesc scene = parse_scene(R"([scene]
+dt = 0.001
+[ground]
+height = 0.0
+[[object]]
+name = "cube"
+mesh = "box:size=0.1x0.1x0.1,cells=2x2x2"
+position = [0.0, 0.2, 0.0]
+)",
+                                        "small.toml", sets);
+    REQUIRE(run_scene(scene, options).status == "ok");
+    const auto lines = lines_of(dir / "steps.csv");
+    std::vector<std::vector<std::string>> rows;
+    for (std::size_t i = 1; i < lines.size(); ++i) rows.push_back(without_timing(lines[0], lines[i]));
+    std::ifstream in(dir / "run.json");
+    const nlohmann::json record = nlohmann::json::parse(in);
+    fs::remove_all(dir);
+    return std::make_pair(rows, record["perturbation"]);
+  };
+  const std::vector<std::string> jitter = {"perturb.position=0.01", "perturb.velocity=0.1", "perturb.rotation=0.1",
+                                           "perturb.material=0.2"};
+  const auto plain0 = run_rows("seed_plain0", 0, {}), plain9 = run_rows("seed_plain9", 9, {});
+  CHECK(plain0.first == plain9.first);
+  CHECK(plain0.second["bodies"][0]["offset_m"] == nlohmann::json::array({0.0, 0.0, 0.0}));
+  const auto a = run_rows("seed_a", 3, jitter), again = run_rows("seed_again", 3, jitter),
+             b = run_rows("seed_b", 4, jitter);
+  CHECK(a.first == again.first);
+  CHECK(a.second == again.second);
+  CHECK(a.first != b.first);
+  CHECK(a.first != plain0.first);
+  // run.json records what was asked and what was drawn.
+  CHECK(a.second["jitter"]["velocity_m_per_s"] == 0.1);
+  const nlohmann::json& cube = a.second["bodies"][0];
+  CHECK(cube["name"] == "cube");
+  CHECK(cube["jitter"]["material_rel"] == 0.2);
+  CHECK(cube["youngs_modulus_factor"].get<double>() != 1.0);
+  CHECK(cube["offset_m"] != b.second["bodies"][0]["offset_m"]);
+}
+
 TEST_CASE("without contacts between bodies implicit and explicit response are the same run", "[run]") {
   // cube_drop: one body on the ground plane, no pair that could collide, so no links.
   std::vector<std::vector<std::string>> lines;

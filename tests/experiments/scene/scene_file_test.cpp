@@ -124,7 +124,15 @@ TEST_CASE("scene file: malformed input names the file, the line and the problem"
       {"stack axis", obj + "stack = { count = 2, axis = \"w\" }\n", {}, "bad.toml", 3, "\"x\", \"y\" or \"z\""},
       {"zero stack", obj + "stack = { count = 0 }\n", {}, "bad.toml", 3, "must lie in [1, 100000]"},
       {"object not array", "object = 3\n", {}, "bad.toml", 1, "[[object]]"},
-      {"cell size", "[collision]\ncell_size = -1\n" + obj, {}, "bad.toml", 2, "\"auto\" or a positive length"},
+      {"cell size", "[collision]\ncell_size = -1\n" + obj, {}, "bad.toml", 2, "\"auto*K\" or a positive length"},
+      {"cell size auto*word", "[collision]\ncell_size = \"auto*big\"\n" + obj, {}, "bad.toml", 2, "\"auto*K\" (K > 0"},
+      {"cell size auto*0", "[collision]\ncell_size = \"auto*0\"\n" + obj, {}, "bad.toml", 2, "\"auto*K\" (K > 0"},
+      {"table size auto*-1", "[collision]\ntable_size = \"auto*-1\"\n" + obj, {}, "bad.toml", 2, "next prime above 2 K tets"},
+      {"perturb material 1", "[perturb]\nmaterial = 1.0\n" + obj, {}, "bad.toml", 2, "must be below 1"},
+      {"perturb negative", "[perturb]\nvelocity = -1\n" + obj, {}, "bad.toml", 2, "perturb.velocity"},
+      {"perturb unknown key", "[perturb]\nspin = 1\n" + obj, {}, "bad.toml", 2, "unknown key 'spin' in perturb"},
+      {"perturb a passive object", obj + "passive = true\nperturb = { position = 1e-3 }\n", {}, "bad.toml", 4,
+       "passive objects are not perturbed"},
       {"--set bad value", obj, {"scene.dt=abc"}, "--set scene.dt=abc", 0, "must be a number"},
       {"--set unknown key", obj, {"scene.dtt=1"}, "--set scene.dtt=1", 0, "unknown key 'dtt'"},
       {"--set no such object", obj, {"object.b.scale=2"}, "--set object.b.scale=2", 0, "no object named"},
@@ -134,6 +142,33 @@ TEST_CASE("scene file: malformed input names the file, the line and the problem"
       {"--set into a value", obj, {"object.0.mesh.x=1"}, "--set object.0.mesh.x=1", 0, "not a table"},
   };
   for (const BadCase& c : cases) check_rejected(c, "bad.toml");
+}
+
+TEST_CASE("scene file: [perturb] globally and per object, and auto*K hash sizes", "[scene][perturb]") {
+  const SceneDesc none = parse_scene(kScene, "t.toml");
+  CHECK_FALSE(none.perturb.global.any());
+  CHECK(none.perturb.objects.empty());
+  CHECK(none.collision.cell_size_auto_factor == 1.0);
+  CHECK(none.collision.table_size_auto_factor == 1.0);
+  const SceneDesc s = parse_scene(kScene, "t.toml",
+                                  {"perturb.position=1e-3", "perturb.velocity=0.01", "perturb.rotation=0.02",
+                                   "perturb.material=0.1", "object.plate.perturb.velocity=0.5",
+                                   "collision.cell_size=auto*0.5", "collision.table_size=auto*4"});
+  CHECK(s.perturb.global.position_m == 1e-3);
+  CHECK(s.perturb.global.velocity_m_per_s == 0.01);
+  CHECK(s.perturb.global.rotation_rad == 0.02);
+  CHECK(s.perturb.global.material_rel == 0.1);
+  REQUIRE(s.perturb.objects.count("plate") == 1);
+  const Jitter plate = s.perturb.objects.at("plate").over(s.perturb.global);
+  CHECK(plate.velocity_m_per_s == 0.5);  // its own
+  CHECK(plate.position_m == 1e-3);       // the rest inherited
+  CHECK(plate.material_rel == 0.1);
+  CHECK_FALSE(s.collision.cell_size_m.has_value());
+  CHECK(s.collision.cell_size_auto_factor == 0.5);
+  CHECK(s.collision.table_size == 0);
+  CHECK(s.collision.table_size_auto_factor == 4.0);
+  const SceneDesc fixed = parse_scene(kScene, "t.toml", {"collision.table_size=1009"});
+  CHECK(fixed.collision.table_size == 1009);
 }
 
 TEST_CASE("scene file: a method's settings in [method.NAME], typed by the method's schema", "[scene]") {
