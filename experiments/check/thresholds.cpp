@@ -6,6 +6,7 @@
 
 #include "experiments/sweep/sweep_plan.hpp"
 
+#include "experiments/results/run_collection.hpp"
 #include "experiments/results/summary_csv.hpp"
 #include "experiments/scene/toml_table_reader.hpp"
 
@@ -106,30 +107,9 @@ const RunKey* reference_of(const RunKey& run, const std::string& label, const st
 }  // namespace
 
 std::vector<CheckRow> check_thresholds(const std::vector<Threshold>& thresholds, const std::filesystem::path& dir) {
-  // Run directories: DIR and every folder beneath it holding a complete
-  // run.json (a sweep's DIR/runs/*, reproduce's DIR/<sweep>/runs/*), named by
-  // their path relative to DIR. Reports and frames are not searched.
-  std::vector<std::pair<std::string, nlohmann::json>> records;
-  const auto consider = [&](const std::filesystem::path& d) {
-    if (auto r = read_complete_run(d)) {
-      const std::string name = d == dir ? d.filename().string() : std::filesystem::relative(d, dir).string();
-      records.emplace_back(name, std::move(*r));
-    }
-  };
-  consider(dir);
-  if (std::filesystem::is_directory(dir))
-    for (auto it = std::filesystem::recursive_directory_iterator(dir); it != decltype(it){}; ++it) {
-      if (!it->is_directory()) continue;
-      const std::string leaf = it->path().filename().string();
-      if (leaf == "report" || leaf == "frames") {
-        it.disable_recursion_pending();
-        continue;
-      }
-      consider(it->path());
-    }
-  std::sort(records.begin(), records.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  const std::vector<CollectedRun> records = collect_runs(dir);
   std::vector<RunKey> runs;
-  for (const auto& [name, record] : records) runs.push_back(key_of(name, record));
+  for (const CollectedRun& r : records) runs.push_back(key_of(r.name, r.record));
   std::vector<CheckRow> rows;
   for (const Threshold& th : thresholds) {
     bool matched = false;

@@ -19,6 +19,7 @@ int run_cli(int argc, const char* const* argv) {
   commands.push_back(cli::make_run_command(app));
   commands.push_back(cli::make_sweep_command(app));
   commands.push_back(cli::make_check_command(app));
+  commands.push_back(cli::make_compare_command(app));
   commands.push_back(cli::make_reproduce_command(app));
   commands.push_back(cli::make_report_command(app));
   commands.push_back(cli::make_list_command(app));

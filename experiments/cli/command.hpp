@@ -25,6 +25,7 @@ std::unique_ptr<Command> make_mesh_command(CLI::App& parent);
 std::unique_ptr<Command> make_reproduce_command(CLI::App& parent);
 std::unique_ptr<Command> make_sweep_command(CLI::App& parent);
 std::unique_ptr<Command> make_check_command(CLI::App& parent);
+std::unique_ptr<Command> make_compare_command(CLI::App& parent);
 std::unique_ptr<Command> make_report_command(CLI::App& parent);
 
 }  // namespace tcb::cli

@@ -18,4 +18,8 @@ double uniform_pm1(std::uint64_t seed, std::uint64_t stream, std::uint64_t index
   return static_cast<double>(top53) * 0x1.0p-52 - 1.0;  // [0, 2) - 1
 }
 
+double uniform_01(std::uint64_t seed, std::uint64_t stream, std::uint64_t index) {
+  return static_cast<double>(counter_bits(seed, stream, index) >> 11) * 0x1.0p-53;
+}
+
 }  // namespace tcb

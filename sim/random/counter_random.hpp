@@ -19,4 +19,7 @@ std::uint64_t counter_bits(std::uint64_t seed, std::uint64_t stream, std::uint64
 /// Uniform in [-1, 1): the word's top 53 bits scaled, exact in double.
 double uniform_pm1(std::uint64_t seed, std::uint64_t stream, std::uint64_t index);
 
+/// Uniform in [0, 1): the word's top 53 bits times 2^-53, exact in double.
+double uniform_01(std::uint64_t seed, std::uint64_t stream, std::uint64_t index);
+
 }  // namespace tcb
