@@ -55,6 +55,11 @@ class ReproduceCommand final : public Command {
     std::size_t total = 0;
     for (const auto& f : files) {
       plans.push_back(load_sweep_plan(f));  // all checked before anything runs
+      if (m_options.quick && plans.back().quick_seeds && *plans.back().quick_seeds < plans.back().seeds.size()) {
+        std::cerr << fmt::format("reproduce --quick: {} runs the first {} of its {} seeds\n", f.filename().string(),
+                                 *plans.back().quick_seeds, plans.back().seeds.size());
+        plans.back() = quick_plan(std::move(plans.back()));
+      }
       total += plans.back().runs.size();
     }
     m_options.executable = std::filesystem::read_symlink("/proc/self/exe");

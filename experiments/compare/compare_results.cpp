@@ -183,15 +183,6 @@ CompareThreshold parse_compare_threshold(const std::string& text) {
   return t;
 }
 
-const std::vector<std::string>& default_compare_metrics() {
-  static const std::vector<std::string> metrics = {
-      "handling_ms.p50",     "handling_ms.p99",      "step_ms.p50",          "overshoot_pct.p99",
-      "work_units_total",    "recall_mean",          "recall_min",           "precision_min",
-      "depth_err.mean",      "latency_steps.max",    "tunneling",            "jitter",
-      "top_centre_height_m.final", "force_error.relative_l2.p50", "divergence.rms_m.final"};
-  return metrics;
-}
-
 bool is_timing_metric(const std::string& metric) {
   const std::string column = column_of(metric);
   return column.size() > 3 && column.compare(column.size() - 3, 3, "_ms") == 0 && column != "reference_ms";
@@ -207,7 +198,7 @@ bool Comparison::regression() const {
 
 Comparison compare_runs(const std::vector<CollectedRun>& a, const std::vector<CollectedRun>& b,
                         std::vector<std::string> metrics, const std::vector<CompareThreshold>& thresholds) {
-  if (metrics.empty()) metrics = default_compare_metrics();
+  if (metrics.empty()) metrics = headline_metrics();
   const auto groups_a = group_repeats(a), groups_b = group_repeats(b);
   Comparison c;
   if (groups_a.size() == 1 && groups_b.size() == 1) {

@@ -44,10 +44,6 @@ struct CompareThreshold {
 /// Parses METRIC=LIMIT; InputError naming --threshold when malformed.
 CompareThreshold parse_compare_threshold(const std::string& text);
 
-/// The metrics compared when none are named: time, work, accuracy, outcome
-/// figures every meter family reports (a pair skips those none of its runs has).
-const std::vector<std::string>& default_compare_metrics();
-
 /// Whether a metric is a wall-clock time (noisy repeats; per-step U test).
 bool is_timing_metric(const std::string& metric);
 
@@ -85,6 +81,8 @@ struct Comparison {
   bool regression() const;                  ///< some threshold failed
 };
 
+/// metrics empty: headline_metrics() (run_collection.hpp); a pair skips a
+/// metric one of its sides has in no run.
 Comparison compare_runs(const std::vector<CollectedRun>& a, const std::vector<CollectedRun>& b,
                         std::vector<std::string> metrics, const std::vector<CompareThreshold>& thresholds);
 

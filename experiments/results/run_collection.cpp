@@ -52,10 +52,22 @@ std::string configuration_label(const nlohmann::json& record) {
                       std::to_string(c["steps"].get<std::int64_t>()) + " steps";
   if (!c["overrides"].empty()) {
     std::string sets;
-    for (const auto& o : c["overrides"]) sets += (sets.empty() ? "" : " ") + o.get<std::string>();
+    for (const auto& o : c["overrides"]) {
+      if (!sets.empty()) sets += ' ';
+      sets += o.get<std::string>();
+    }
     label += " [" + sets + "]";
   }
   return label;
+}
+
+const std::vector<std::string>& headline_metrics() {
+  static const std::vector<std::string> metrics = {
+      "handling_ms.p50",  "handling_ms.p99",   "step_ms.p50",  "overshoot_pct.p99",
+      "work_units_total", "recall_mean",       "recall_min",   "precision_min",
+      "depth_err.mean",   "latency_steps.max", "tunneling",    "jitter",
+      "top_centre_height_m.final", "force_error.relative_l2.p50", "divergence.rms_m.final"};
+  return metrics;
 }
 
 std::vector<std::vector<const CollectedRun*>> group_repeats(const std::vector<CollectedRun>& runs) {

@@ -32,6 +32,11 @@ std::string configuration_key(const nlohmann::json& record);
 /// The same in words: "plates20 interruptible full-work/3 implicit 2000 steps [collision.cell_size=auto*2]".
 std::string configuration_label(const nlohmann::json& record);
 
+/// The summary metrics worth a line when configurations are summarized or
+/// compared: time, work, accuracy and outcome figures of every meter family
+/// (a run that lacks one simply has no value for it).
+const std::vector<std::string>& headline_metrics();
+
 /// Runs grouped by configuration_key, groups in order of their first run,
 /// each group sorted by seed (then name).
 std::vector<std::vector<const CollectedRun*>> group_repeats(const std::vector<CollectedRun>& runs);

@@ -26,14 +26,14 @@ void flatten(const Json& node, const std::string& prefix, std::vector<std::pair<
   }  // arrays (oracle_unmeasured, timing.reasons, ...) stay in run.json
 }
 
+}  // namespace
+
 std::string csv_cell(const std::string& text) {
   if (text.find_first_of(",\"\n") == std::string::npos) return text;
   std::string quoted = "\"";
   for (const char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
   return quoted + "\"";
 }
-
-}  // namespace
 
 namespace {
 

@@ -39,6 +39,9 @@ SummaryLookup find_summary_metric(const nlohmann::json& run, const std::string& 
 /// find_summary_metric(run, dotted).value.
 std::optional<double> summary_metric(const nlohmann::json& run, const std::string& dotted);
 
+/// A CSV cell: quoted (with "" for ") when it holds a comma, a quote or a newline.
+std::string csv_cell(const std::string& text);
+
 void write_summary_csv(const std::filesystem::path& path, const std::vector<SummaryRow>& rows);
 
 }  // namespace tcb

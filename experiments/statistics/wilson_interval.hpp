@@ -3,7 +3,7 @@
 /// normal approximation it stays inside [0, 1] and is not zero-width at 0/n
 /// or n/n, which is where a benchmark's outcomes ("the stack stands") sit.
 /// centre = (p + z^2/2n) / (1 + z^2/n), half = z sqrt(p(1-p)/n + z^2/4n^2) / (1 + z^2/n),
-/// p = k/n; clamped to [0, 1]. z = 1.959963984540054 for 95 %.
+/// p = k/n; clamped to [0, 1], exactly 0 at k = 0 and 1 at k = n. z = 1.959963984540054 for 95 %.
 
 #include <cstddef>
 #include <optional>

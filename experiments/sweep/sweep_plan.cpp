@@ -149,6 +149,8 @@ SweepPlan load_sweep_plan(const std::filesystem::path& path) {
       seeds.push_back(static_cast<std::uint64_t>(*e.value<std::int64_t>()));
     }
   }
+  plan.seeds = seeds;
+  if (const auto n = r.integer("quick_seeds", 1, std::int64_t{1} << 20)) plan.quick_seeds = static_cast<std::size_t>(*n);
   plan.steps = r.integer("steps", 1, std::int64_t{1} << 40);
   plan.quick_steps = r.integer("quick_steps", 1, std::int64_t{1} << 40);
   plan.record = static_cast<int>(r.integer("record", 1, 1 << 30).value_or(0));
@@ -190,6 +192,15 @@ SweepPlan load_sweep_plan(const std::filesystem::path& path) {
       sets.push_back(set);
     }
   }
+  // The noise-floor run sets [perturb] position to the floor: a set that
+  // jitters positions itself would have its jitter replaced there, and the
+  // floor would no longer be the reference nudged by noise_floor.
+  if (plan.divergence_every > 0 && plan.noise_floor_m > 0.0)
+    for (const auto& set : sets)
+      for (const std::string& o : set)
+        if (o.rfind("perturb.position=", 0) == 0)
+          r.fail("sets", "\"" + o + "\" with divergence: the noise-floor run replaces [perturb] position; "
+                         "jitter by velocity, rotation or material instead (or noise_floor = 0)");
   if (const auto figures = r.string_list("figures")) {
     for (const std::string& figure : *figures)
       if (!std::filesystem::exists(source_tree_dir() / "report" / "tcbench_report" / "figures" / (figure + ".py")))
@@ -204,7 +215,8 @@ SweepPlan load_sweep_plan(const std::filesystem::path& path) {
   std::map<std::string, std::size_t> seen;
   for (const auto& scene : scenes)
     for (std::size_t s = 0; s < sets.size(); ++s)
-      for (const std::uint64_t seed : seeds) {
+      for (std::size_t seed_index = 0; seed_index < seeds.size(); ++seed_index) {
+        const std::uint64_t seed = seeds[seed_index];
         const std::size_t group = plan.groups++;
         const std::string tail =
             fmt::format("-s{}", seed) + (sets.size() > 1 ? fmt::format("-v{}", s) : std::string());
@@ -218,6 +230,7 @@ SweepPlan load_sweep_plan(const std::filesystem::path& path) {
                        s,
                        sets[s],
                        group,
+                       seed_index,
                        reference};
           if (seen.count(run.id)) return;
           seen[run.id] = plan.runs.size();
@@ -229,7 +242,7 @@ SweepPlan load_sweep_plan(const std::filesystem::path& path) {
         if (any_relative || diverge) add(MethodEntry{"full", "full", {}, {}}, SweepBudget{}, "");
         if (diverge && plan.noise_floor_m > 0.0) {
           SweepRun floor{id_part(scene) + "-full-none-noise_floor" + tail, scene, "full", {}, SweepBudget{}, seed, s,
-                         sets[s], group, reference_id};
+                         sets[s], group, seed_index, reference_id};
           floor.sets.push_back(fmt::format("perturb.position={}", plan.noise_floor_m));
           seen[floor.id] = plan.runs.size();
           plan.runs.push_back(floor);
@@ -243,6 +256,13 @@ SweepPlan load_sweep_plan(const std::filesystem::path& path) {
             add(method, budget, budget.is_relative() || diverge ? reference_id : "");
           }
       }
+  return plan;
+}
+
+SweepPlan quick_plan(SweepPlan plan) {
+  if (!plan.quick_seeds || *plan.quick_seeds >= plan.seeds.size()) return plan;
+  std::erase_if(plan.runs, [&](const SweepRun& run) { return run.seed_index >= *plan.quick_seeds; });
+  plan.seeds.resize(*plan.quick_seeds);
   return plan;
 }
 

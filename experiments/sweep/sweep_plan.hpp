@@ -10,7 +10,10 @@
 ///                                          # settings under their [method.NAME] names
 ///                                          # (--set method.every_nth.n=4 for that run)
 ///   budgets = ["none", "ms:4.5", "work:20000", "full/3", "full-work/3"]
-///   seeds   = [0]                          # optional, default [0]
+///   seeds   = [0]                          # optional, default [0]; repeats of every run: a seed
+///                                          # changes a run only through [perturb] jitter (e.g.
+///                                          # sets = [["perturb.velocity=1e-3"]])
+///   quick_seeds = 2                        # optional: under `reproduce --quick`, only the first N seeds
 ///   steps   = 200                          # optional: every run's length
 ///   quick_steps = 300                      # optional: the length under `reproduce --quick`
 ///   record  = 40                           # optional: VTU frames every N steps (report animation)
@@ -71,6 +74,7 @@ struct SweepRun {
   std::size_t set_index = 0;
   std::vector<std::string> sets;  ///< the scene variant's --set strings
   std::size_t group = 0;        ///< index of its (scene, set, seed) group
+  std::size_t seed_index = 0;   ///< position of its seed in the plan's seeds
   /// The group's full run (method full, budget none): the cost relative
   /// budgets divide, and with `divergence` the run compared with.
   std::string reference_id;
@@ -80,6 +84,8 @@ struct SweepPlan {
   std::filesystem::path file;
   std::string description;
   std::optional<std::int64_t> steps, quick_steps;
+  std::vector<std::uint64_t> seeds{0};
+  std::optional<std::size_t> quick_seeds;  ///< under --quick, the first N seeds only
   int record = 0;  ///< --record N for every run (0: none)
   std::string oracle = "off";
   std::optional<std::string> oracle_volume;
@@ -94,6 +100,10 @@ struct SweepPlan {
 /// Reads and expands a sweep file; InputError (file:line) for anything wrong,
 /// including unknown scenes and methods, before any run starts.
 SweepPlan load_sweep_plan(const std::filesystem::path& path);
+
+/// The plan `reproduce --quick` runs: the runs of the first quick_seeds
+/// seeds (all when the plan sets none).
+SweepPlan quick_plan(SweepPlan plan);
 
 /// The runs of shard `index` of `count` (whole groups, index in [0, count)).
 std::vector<SweepRun> shard_runs(const SweepPlan& plan, std::size_t index, std::size_t count);

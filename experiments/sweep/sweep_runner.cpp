@@ -13,6 +13,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "experiments/results/configurations_csv.hpp"
 #include "experiments/results/summary_csv.hpp"
 #include "experiments/run/thread_clock.hpp"
 #include "sim/io/input_error.hpp"
@@ -104,6 +105,7 @@ void write_sweep_json(const SweepPlan& plan, const fs::path& out_dir) {
   sweep["file"] = plan.file.string();
   sweep["description"] = plan.description;
   sweep["figures"] = plan.figures;
+  sweep["seeds"] = plan.seeds;
   sweep["runs"] = nlohmann::ordered_json::array();
   for (const SweepRun& run : plan.runs) sweep["runs"].push_back("runs/" + run.id);
   write_file_atomically(out_dir / "sweep.json", sweep.dump(2) + "\n");
@@ -201,6 +203,11 @@ SweepOutcome run_sweep(const SweepPlan& plan, const SweepOptions& options) {
     rows.push_back(std::move(row));
   }
   write_summary_csv(options.out_dir / "summary.csv", rows);
+  std::vector<CollectedRun> complete;
+  for (const SweepRun& run : plan.runs)
+    if (auto record = read_complete_run(runs_dir / run.id))
+      complete.push_back({"runs/" + run.id, runs_dir / run.id, std::move(*record)});
+  write_configurations_csv(options.out_dir / "configurations.csv", complete);
   write_sweep_json(plan, options.out_dir);
   return outcome;
 }

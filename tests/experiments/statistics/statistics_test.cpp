@@ -22,8 +22,7 @@ TEST_CASE("wilson interval: known values, inside [0, 1], none without runs", "[s
   CHECK(half.hi == Approx(0.7634069094874361).epsilon(1e-12));
   const Interval all = *wilson_interval(10, 10);
   CHECK(all.lo == Approx(0.7224672001371107).epsilon(1e-12));
-  CHECK(all.hi <= 1.0);
-  CHECK(all.hi == Approx(1.0));
+  CHECK(all.hi == 1.0);
   const Interval four_of_five = *wilson_interval(4, 5);
   CHECK(four_of_five.lo == Approx(0.37553462976252533).epsilon(1e-12));
   CHECK(four_of_five.hi == Approx(0.9637758913675698).epsilon(1e-12));

@@ -122,6 +122,28 @@ sets = [[], ["scene.dt=0.002"]]
   fs::remove(path);
 }
 
+TEST_CASE("quick_seeds: reproduce --quick keeps the first N seeds' runs, whole groups", "[sweep]") {
+  const fs::path path = write_sweep("quick_seeds", R"([sweep]
+scenes = ["cube_drop"]
+methods = ["full", "interruptible"]
+budgets = ["full-work/2"]
+seeds = [4, 5, 6, 7, 8]
+quick_seeds = 2
+sets = [["perturb.velocity=1e-3"]]
+)");
+  const SweepPlan plan = load_sweep_plan(path);
+  CHECK(plan.runs.size() == 10);  // 5 seeds x (reference full + interruptible)
+  CHECK(plan.seeds == std::vector<std::uint64_t>{4, 5, 6, 7, 8});
+  const SweepPlan quick = quick_plan(plan);
+  REQUIRE(quick.runs.size() == 4);
+  for (const SweepRun& run : quick.runs) CHECK((run.seed == 4 || run.seed == 5));
+  CHECK(quick.seeds == std::vector<std::uint64_t>{4, 5});
+  fs::remove(path);
+  const fs::path all = write_sweep("quick_all", "[sweep]\nscenes = [\"cube_drop\"]\nmethods = [\"full\"]\nbudgets = [\"none\"]\nseeds = [0, 1]\n");
+  CHECK(quick_plan(load_sweep_plan(all)).runs.size() == 2);  // no quick_seeds: all seeds
+  fs::remove(all);
+}
+
 TEST_CASE("shards cover every run exactly once, whole groups each", "[sweep]") {
   const fs::path path = write_sweep("shard", R"([sweep]
 scenes = ["cube_drop", "plates20"]
@@ -167,6 +189,11 @@ TEST_CASE("malformed sweep files are rejected with the file and the line", "[swe
        ":3: methods[0].budgets: 'fast' is not"},
       {"[sweep]\nscenes = [\"cube_drop\"]\nmethods = [\"full\"]\nbudgets = [\"none\"]\nfigures = [\"fig99\"]\n",
        ":5: sweep.figures: no report figure 'fig99'"},
+      {"[sweep]\nscenes = [\"cube_drop\"]\nmethods = [\"full\"]\nbudgets = [\"none\"]\ndivergence = 10\n"
+       "sets = [[\"perturb.position=1e-3\"]]\n",
+       ":6: sweep.sets: \"perturb.position=1e-3\" with divergence"},
+      {"[sweep]\nscenes = [\"cube_drop\"]\nmethods = [\"full\"]\nbudgets = [\"none\"]\nquick_seeds = 0\n",
+       ":5: sweep.quick_seeds"},
   };
   for (const auto& [text, expected] : cases) {
     INFO(text);

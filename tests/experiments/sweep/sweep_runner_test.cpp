@@ -93,6 +93,13 @@ figures = ["jitter"]
     const auto n = std::count_if(lines.begin(), lines.end(), [&](const std::string& l) { return l.rfind(run.id + ",", 0) == 0; });
     CHECK(n == 1);
   }
+  // configurations.csv: the three configurations, each resting on its three seeds.
+  std::ifstream conf(out / "configurations.csv");
+  std::vector<std::string> conf_lines;
+  for (std::string line; std::getline(conf, line);) conf_lines.push_back(line);
+  REQUIRE(conf_lines.size() == 4);
+  CHECK(conf_lines[0].rfind("configuration,scene,method,budget,response,overrides,runs,seeds,unstable,", 0) == 0);
+  for (std::size_t i = 1; i < conf_lines.size(); ++i) CHECK(conf_lines[i].find(",3,0 1 2,0,3,0,") != std::string::npos);
   // A relative budget recorded both forms.
   const auto relative = read_complete_run(out / "runs" / "cube_drop-interruptible-full_work_over_2-s0");
   REQUIRE(relative);
