@@ -1,6 +1,7 @@
 #include "baselines/registry.hpp"
 
 #include "baselines/every_nth_handler.hpp"
+#include "baselines/fcl_tets_handler.hpp"
 #include "baselines/full_handler.hpp"
 #include "baselines/none_handler.hpp"
 #include "method/handler/interruptible_handler.hpp"
@@ -109,6 +110,14 @@ const std::vector<MethodInfo>& method_registry() {
                      .description = "between cycles, apply the last cycle's forces again (false: none)"}},
        .make =
            [](const MethodSettings& s) { return std::make_unique<EveryNthHandler>(s.integer("n"), s.boolean("hold")); }},
+      {.name = "fcl_tets",
+       .description = "baseline an FCL user would write: every tet an FCL Convex in a dynamic AABB tree, tet pairs "
+                      "through libccd's GJK+EPA, a penalty force per pair spread over both tets; under a budget the "
+                      "pair loop stops, no extrapolation. Reports the vertices of colliding tets (recall: a vertex "
+                      "inside is found when a tet around it is in a pair; precision counts the others)",
+       .make = [](const MethodSettings&) { return std::make_unique<FclTetsHandler>(); },
+       .uses_budget = true,
+       .reports = MethodInfo::Reports::TetPairVertices},
       {.name = "brute_force",
        .description = "every point against every tet, no hashing: the O(n^2) reference for tests",
        .make = [](const MethodSettings&) { return std::make_unique<FullHandler>(DetectionMode::BruteForce); }},

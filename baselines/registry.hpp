@@ -28,6 +28,11 @@ struct MethodInfo {
   bool detects = true;
   /// True when a budget changes what it does; sweeps run the others once, budget none.
   bool uses_budget = false;
+  /// What contacts() holds: the points inside a tet of another body (every
+  /// method of the paper's kind), or the vertices of tets in colliding tet
+  /// pairs (fcl_tets): a superset of the inside points wherever the pairs
+  /// overlap in volume, so the cross-method test compares it as one.
+  enum class Reports { InsidePoints, TetPairVertices } reports = Reports::InsidePoints;
 };
 
 const std::vector<MethodInfo>& method_registry();

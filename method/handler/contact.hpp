@@ -20,6 +20,7 @@ enum class DepthSource : std::uint8_t {
   None,        ///< not known (yet); no depth-based force
   Border,      ///< from the point's border edges (Heidelberger et al. 2004)
   Propagated,  ///< propagated from neighbours with a depth
+  TetPair,     ///< a tet pair's penetration (GJK + EPA; the fcl_tets baseline)
 };
 
 struct Contact {

@@ -1,6 +1,9 @@
 // Every registered method, with an unlimited budget, finds exactly the
 // colliding points of brute_force on a set of small scenes. One test over the
-// registry: a new baseline is tested by being registered.
+// registry: a new baseline is tested by being registered. A method that
+// reports the vertices of colliding tet pairs (fcl_tets) is compared on what
+// it can be compared on: every point brute_force finds inside a tet is among
+// its vertices, with the partner body brute_force names.
 #include <catch2/catch.hpp>
 
 #include <set>
@@ -48,7 +51,19 @@ TEST_CASE("every registered method finds exactly brute_force's colliding points"
       for (const MethodInfo& method : method_registry()) {
         if (!method.detects) continue;
         INFO("method " << method.name);
-        CHECK(colliding_points(method.name, scene, steps_before) == expected);
+        const PointSet found = colliding_points(method.name, scene, steps_before);
+        if (method.reports == MethodInfo::Reports::InsidePoints) {
+          CHECK(found == expected);
+          continue;
+        }
+        // Plates exactly face on face overlap in no volume: no tet pair penetrates.
+        if (scene_name.find("exactly face on face") != std::string::npos) continue;
+        std::set<std::tuple<int, int, int>> vertices;
+        for (const auto& [object, vertex, other, tet] : found) vertices.insert({object, vertex, other});
+        std::size_t missing = 0;
+        for (const auto& [object, vertex, other, tet] : expected) missing += !vertices.count({object, vertex, other});
+        CHECK(missing == 0);
+        CHECK(found.size() >= expected.size());
       }
     }
   }
