@@ -24,6 +24,23 @@ int run_cli(int argc, const char* const* argv) {
   commands.push_back(cli::make_report_command(app));
   commands.push_back(cli::make_list_command(app));
   commands.push_back(cli::make_mesh_command(app));
+  // CLI11 says "A subcommand is required" for a misspelt command too: say
+  // which word it did not know, and which it knows.
+  if (argc < 2 || argv[1][0] != '-') {
+    std::string names;
+    bool known = false;
+    for (const auto& command : commands) {
+      if (!names.empty()) names += ", ";
+      names += command->app->get_name();
+      known = known || (argc >= 2 && command->app->get_name() == argv[1]);
+    }
+    if (!known) {
+      std::cerr << "tcbench: error: "
+                << (argc < 2 ? std::string("no command given") : "unknown command '" + std::string(argv[1]) + "'")
+                << " (commands: " << names << "; tcbench --help)\n";
+      return 2;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

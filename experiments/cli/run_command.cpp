@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "experiments/cli/command.hpp"
+#include "experiments/cli/whole_number.hpp"
 #include "experiments/cli/progress_line.hpp"
 #include "experiments/run/run_scene.hpp"
 #include "experiments/scene/scene_file.hpp"
@@ -54,7 +55,7 @@ class RunCommand final : public Command {
         ->capture_default_str();
     app->add_option("--budget-label", m_options.budget_label,
                     "How the budget was asked for, recorded in run.json (sweeps pass e.g. full/3)");
-    app->add_option("--steps", m_steps, "Number of steps (default: the scene's)")->check(CLI::NonNegativeNumber);
+    app->add_option("--steps", m_steps, "Number of steps (default: the scene's)")->check(whole_number(0, std::int64_t{1} << 40));
     app->add_option("--seed", m_seed, "Seed (a whole number, 0 .. 2^64-1): draws the scene's [perturb] offsets")
         ->capture_default_str();
     app->add_option("--set", m_options.overrides,
@@ -62,18 +63,18 @@ class RunCommand final : public Command {
                     "(repeatable; `tcbench list methods` lists the settings)");
     app->add_option("--record", m_options.record_every,
                     "Write a ParaView frame (DIR/frames/*.vtu, DIR/frames.pvd) every N steps")
-        ->check(CLI::PositiveNumber);
+        ->check(whole_number(1, std::int64_t{1} << 30));
     app->add_option("--trajectory", m_options.trajectory_every,
                     "Write every body's state to DIR/trajectory.bin every N steps (float32), for runs that "
                     "take this one as --reference")
-        ->check(CLI::PositiveNumber);
+        ->check(whole_number(1, std::int64_t{1} << 30));
     app->add_option("--reference", m_options.reference_dir,
                     "A reference run's directory (made with --trajectory): divergence from it, per recorded step "
                     "(summary: divergence)");
     app->add_option("--out", m_out, "Result directory (default: results/runs/SCENE-METHOD)");
     app->add_option("--pin", m_pin,
                     "Pin the handling thread to this CPU (recorded in run.json; exit 2 when not allowed here)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(whole_number(0, 4095));
     app->add_flag("--quiet", m_quiet, "Print nothing but errors");
   }
 

@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "experiments/cli/command.hpp"
+#include "experiments/cli/whole_number.hpp"
 #include "experiments/sweep/sweep_runner.hpp"
 
 namespace tcb::cli {
@@ -34,7 +35,7 @@ class SweepCommand final : public Command {
     app->add_option("SWEEP", m_file, "The sweep file (.toml); see experiments/sweeps/")->required();
     app->add_option("--out", m_out, "Result directory")->required();
     app->add_option("--jobs", m_options.jobs, "Runs at once (wall-clock budgets are only meaningful with 1)")
-        ->check(CLI::PositiveNumber)
+        ->check(whole_number(1, 1024))
         ->capture_default_str();
     app->add_option("--shard", m_shard, "Run only shard I of N (0-based, whole scene/seed/set groups)");
     app->add_flag("--resume", m_options.resume, "Skip runs whose run.json is complete; redo the rest");

@@ -219,3 +219,30 @@ TEST_CASE("cli: a directory given where a file belongs is named as such (issue 1
   fs::remove_all(dir);
   fs::remove_all(with_ext);
 }
+
+TEST_CASE("cli: messages say what was typed wrong and what is allowed (issue 15, defect 10)", "[cli]") {
+  struct Case {
+    std::vector<std::string> args;
+    std::string message;
+  };
+  const std::vector<Case> cases = {
+      {{"sweep", "x.toml", "--out", "o", "--jobs", "0"}, "--jobs: 0 is out of range; allowed: 1 .. 1024"},
+      {{"sweep", "x.toml", "--out", "o", "--jobs", "2.5"}, "--jobs: '2.5' is not a whole number; allowed: 1 .. 1024"},
+      {{"run", "cube_drop", "--steps", "abc"}, "--steps: 'abc' is not a whole number; allowed: 0 .. 1099511627776"},
+      {{"run", "cube_drop", "--steps", "1e20"}, "--steps: '1e20' is not a whole number"},
+      {{"run", "cube_drop", "--steps", "-5"}, "--steps: -5 is out of range"},
+      {{"run", "cube_drop", "--steps", "99999999999999999999999"}, "is out of range; allowed: 0 .. 1099511627776"},
+      {{"run", "cube_drop", "--record", "0"}, "--record: 0 is out of range; allowed: 1 .."},
+      {{"frobnicate"}, "unknown command 'frobnicate' (commands: run, sweep, check, compare,"},
+      {{}, "no command given (commands: run,"},
+  };
+  for (const Case& c : cases) {
+    std::string line;
+    for (const auto& a : c.args) line += a + " ";
+    INFO(line);
+    const Result r = cli(c.args);
+    CHECK(r.code == 2);
+    CHECK_THAT(r.err + r.out, Catch::Matchers::Contains(c.message));
+    CHECK(r.err.find("not in range") == std::string::npos);  // CLI11's own, with DBL_MAX in 309 digits
+  }
+}
