@@ -101,7 +101,8 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
   const std::vector<std::unique_ptr<Meter>> meters = make_meters(setup);
   handler->init(world, collision);  // not timed
   // Doubtful collision settings matter only to a method that handles collisions.
-  const std::vector<std::string> warnings = method.detects ? collision.warnings : std::vector<std::string>{};
+  std::vector<std::string> warnings = world.build_warnings;
+  if (method.detects) warnings.insert(warnings.end(), collision.warnings.begin(), collision.warnings.end());
   if (options.on_warning)
     for (const auto& w : warnings) options.on_warning(w);
 

@@ -61,6 +61,10 @@ class World {
   std::int64_t step_index = 0;
   /// Implicit penalty contacts for the next step, added by the handler.
   std::vector<ContactLink> contact_links;
+  /// What build_world found in the objects and did about it (inverted tets
+  /// reoriented, flat tets inert, massless vertices held still), in words,
+  /// for the run's warnings.
+  std::vector<std::string> build_warnings;
   /// What the implicit contact solves of the last step did.
   ContactSolveStats last_contact_solve;
 

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <map>
 
 #include "sim/io/input_error.hpp"
@@ -42,6 +43,37 @@ Body make_body(const std::string& name, const ObjectDesc& object, std::shared_pt
   return body;
 }
 
+// What a mesh brings that a run should know about, said once per object; an
+// object that would have no mass at all is refused (nothing to simulate).
+void check_object(World& world, const WorldDesc& desc, const ObjectDesc& object, const TetMesh& mesh,
+                  const std::vector<Vec3>& scaled) {
+  const std::string who = fmt::format("object '{}' (mesh {})", object.name, object.mesh);
+  if (mesh.inverted_tets > 0)
+    world.build_warnings.push_back(fmt::format("{}: {} of {} tets were given inverted (negative orientation) and "
+                                               "are simulated reoriented", who, mesh.inverted_tets, mesh.tet_count()));
+  if (mesh.degenerate_tets > 0)
+    world.build_warnings.push_back(fmt::format("{}: {} of {} tets are exactly flat: they get no mass and no "
+                                               "stiffness", who, mesh.degenerate_tets, mesh.tet_count()));
+  if (object.passive) return;
+  const std::vector<double> mass = lumped_masses_kg(mesh, scaled, object.material.density_kg_per_m3);
+  double total = 0.0;
+  std::size_t massless = 0;
+  for (double m : mass) {
+    total += m;
+    massless += !(m > 0.0);
+  }
+  if (!(total > 0.0) || !std::isfinite(total))
+    throw InputError(desc.path.empty() ? object.name : desc.path.string(), object.source_line,
+                     fmt::format("{}: no mass to simulate ({}): every tet is flat, or scale {} and density {} "
+                                 "kg/m^3 make the volumes {}",
+                                 who, total, object.scale, object.material.density_kg_per_m3,
+                                 std::isfinite(total) ? "underflow to 0" : "overflow"));
+  if (massless > 0)
+    world.build_warnings.push_back(fmt::format("{}: {} of {} vertices have no mass (every tet around them is flat "
+                                               "or none uses them): they stay where they are",
+                                               who, massless, mass.size()));
+}
+
 }  // namespace
 
 World build_world(const WorldDesc& desc) {
@@ -62,6 +94,7 @@ World build_world(const WorldDesc& desc) {
                          fmt::format("object '{}': scale {} puts its coordinates beyond {:g} m, the range of the "
                                      "exact geometric predicates",
                                      object.name, object.scale, kMaxCoordinate_m));
+    check_object(world, desc, object, *mesh, scaled);
     if (!object.trajectory.empty()) {
       std::shared_ptr<const Trajectory> path;
       try {

@@ -1,7 +1,13 @@
 // The world: a cube settles on the ground and stays; passive bodies stay put;
-// stacks touch exactly; ground friction; stability at the extremes.
+// stacks touch exactly; ground friction; stability at the extremes;
+// degenerate objects said or refused.
 #include <catch2/catch.hpp>
 
+#include <unistd.h>
+
+#include <filesystem>
+
+#include "sim/io/atomic_file.hpp"
 #include "sim/world/world_desc.hpp"
 
 using namespace tcb;
@@ -206,4 +212,40 @@ TEST_CASE("a cloned world steps bit for bit like the original", "[world][clone]"
       }
     }
   }
+}
+
+TEST_CASE("degenerate objects: inverted tets reoriented and said, flat tets and massless vertices said, no mass refused",
+          "[world][extremes]") {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("tcbench_degenerate_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  // Tet 1 is inverted, tet 3 is flat (its fourth vertex in the plane of the
+  // other three, used by no other tet: a vertex without mass).
+  write_file_atomically(dir / "odd.mesh", "MeshVersionFormatted 1\nDimension 3\nVertices\n6\n0 0 0 0\n1 0 0 0\n"
+                                          "0 1 0 0\n0 0 1 0\n1 1 1 0\n2 0 0 0\nTetrahedra\n3\n1 3 2 4 0\n"
+                                          "2 3 4 5 0\n1 2 6 3 0\nEnd\n");
+  write_file_atomically(dir / "flat.mesh", "MeshVersionFormatted 1\nDimension 3\nVertices\n4\n0 0 0 0\n1 0 0 0\n"
+                                           "0 1 0 0\n1 1 0 0\nTetrahedra\n1\n1 2 3 4 0\nEnd\n");
+  const auto desc_of = [&](const std::string& mesh, double scale, bool passive) {
+    WorldDesc desc;
+    ObjectDesc o;
+    o.name = "thing";
+    o.mesh = mesh;
+    o.base_dir = dir;
+    o.scale = scale;
+    o.passive = passive;
+    desc.objects.push_back(o);
+    return desc;
+  };
+  const World odd = build_world(desc_of("odd.mesh", 1.0, false));
+  REQUIRE(odd.build_warnings.size() == 3);
+  CHECK_THAT(odd.build_warnings[0], Catch::Matchers::Contains("1 of 3 tets were given inverted"));
+  CHECK_THAT(odd.build_warnings[1], Catch::Matchers::Contains("1 of 3 tets are exactly flat"));
+  CHECK_THAT(odd.build_warnings[2], Catch::Matchers::Contains("1 of 6 vertices have no mass"));
+  CHECK(build_world(desc_of("box:size=1x1x1,cells=2x2x2", 1.0, false)).build_warnings.empty());
+  CHECK_THROWS_WITH(build_world(desc_of("flat.mesh", 1.0, false)), Catch::Matchers::Contains("no mass to simulate"));
+  CHECK_THROWS_WITH(build_world(desc_of("box:size=1x1x1,cells=2x2x2", 1e-150, false)),
+                    Catch::Matchers::Contains("scale 1e-150"));
+  CHECK_NOTHROW(build_world(desc_of("flat.mesh", 1.0, true)));  // a passive obstacle needs no mass
+  std::filesystem::remove_all(dir);
 }
