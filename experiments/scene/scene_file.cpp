@@ -99,6 +99,7 @@ ObjectDesc read_object(const toml::table& table, std::size_t index, const std::f
   const auto mesh = named.string("mesh");
   if (!mesh) throw InputError(file.file, o.source_line, context + " has no mesh (a file or a generator such as \"box:size=1x0.1x1,cells=8x1x8\")");
   o.mesh = *mesh;
+  if (const Where w = where_of(*named.node("mesh"), file); w.file != file.file) o.mesh_origin = w.file;
   o.base_dir = path.parent_path();
   o.position_m = named.vec3("position").value_or(o.position_m);
   o.scale = named.positive("scale", o.scale);

@@ -20,7 +20,9 @@ std::shared_ptr<const TetMesh> load_cached(const ObjectDesc& object, const World
     cache.emplace(key, mesh);
     return mesh;
   } catch (const InputError& e) {
-    if (e.line() > 0 || desc.path.empty()) throw;  // the mesh file's own line says more
+    if (e.line() > 0 || (desc.path.empty() && object.mesh_origin.empty())) throw;  // the mesh file's line says more
+    // Blame where the mesh was named: the scene's object, or the --set that replaced it.
+    if (!object.mesh_origin.empty()) throw InputError(object.mesh_origin, 0, "object '" + object.name + "': " + e.what());
     throw InputError(desc.path.string(), object.source_line, "object '" + object.name + "': " + e.what());
   }
 }

@@ -39,6 +39,9 @@ struct StackDesc {
 struct ObjectDesc {
   std::string name;
   std::string mesh;                 ///< file path (relative to base_dir) or generator string
+  /// Where `mesh` was given when not in the scene file ("--set object.0.mesh=..."),
+  /// so a mesh that cannot be loaded is blamed there; empty: the object's line.
+  std::string mesh_origin;
   std::filesystem::path base_dir;   ///< the scene file's folder
   int source_line = 0;              ///< where the object is declared, for errors
   Vec3 position_m = Vec3::Zero();   ///< translation applied after scaling

@@ -144,6 +144,21 @@ TEST_CASE("scene file: malformed input names the file, the line and the problem"
   for (const BadCase& c : cases) check_rejected(c, "bad.toml");
 }
 
+TEST_CASE("scene file: a mesh that cannot be loaded is blamed on the --set that named it (issue 15, defect 4)",
+          "[scene]") {
+  const SceneDesc s = parse_scene(kScene, "dir/test.toml", {"object.floor.mesh=nothere.mesh"});
+  CHECK(s.world.objects[0].mesh_origin.empty());
+  CHECK(s.world.objects[1].mesh_origin == "--set object.floor.mesh=nothere.mesh");
+  try {
+    build_world(s.world);
+    FAIL("a missing mesh was loaded");
+  } catch (const InputError& e) {
+    CHECK(e.file() == "--set object.floor.mesh=nothere.mesh");
+    CHECK(e.line() == 0);
+    CHECK_THAT(e.what(), Contains("nothere.mesh"));
+  }
+}
+
 TEST_CASE("scene file: [perturb] globally and per object, and auto*K hash sizes", "[scene][perturb]") {
   const SceneDesc none = parse_scene(kScene, "t.toml");
   CHECK_FALSE(none.perturb.global.any());
