@@ -16,7 +16,7 @@ themselves (every_nth n = 2 against interruptible at the same work), the jitter 
 import math
 from dataclasses import dataclass, field
 
-from . import figures, pairing
+from . import figures, pairing, statistics
 from .loader import relative_divisor, response_order
 from .paper import (EVERY_NTH_N, FLOOR_FACTOR, JITTER_FACTOR, LATENCY_STEPS, OVERSHOOT_PCT, SPEEDUP, SPEEDUP_MIN,
                     STANDING_FRACTION)
@@ -90,7 +90,10 @@ def plural(count, noun):
 
 def share(good, total):
     """The verdict of a claim judged run by run."""
-    return HOLDS if good == total else FAILS if good == 0 else f"partly: {good} of {plural(total, 'run')}"
+    if good == total or good == 0:
+        verdict = HOLDS if good == total else FAILS
+        return verdict + (f" ({statistics.rate_text(good, total)} runs)" if total > 1 else "")
+    return f"partly: {statistics.rate_text(good, total)} runs"
 
 
 def by_budget(runs):
@@ -110,9 +113,14 @@ def per_budget_verdict(results):
     """results: [(budget label, good, total)] -> one verdict naming the budgets it holds at."""
     if not results:
         return UNMEASURED
-    held = [label for label, good, total in results if good == total]
-    failed = [label for label, good, total in results if not good]
-    partial = [f"{label} in {good} of {total} runs" for label, good, total in results if 0 < good < total]
+    # With repeats, each budget's count carries its Wilson 95 % interval (statistics.py): 5 of 5 runs is
+    # not a certainty, only a rate above 57 %.
+    def rate(good, total):
+        return f" ({statistics.rate_text(good, total)} runs)" if total > 1 else ""
+    held = [label + rate(good, total) for label, good, total in results if good == total]
+    failed = [label + rate(good, total) for label, good, total in results if not good]
+    partial = [f"{label} in {statistics.rate_text(good, total)} runs" for label, good, total in results
+               if 0 < good < total]
     if len(held) == len(results):
         return f"{HOLDS} at {'every budget' if len(results) > 1 else 'its budget'} ({', '.join(held)})"
     if len(failed) == len(results):
@@ -314,8 +322,9 @@ def latency_bound(runs, ctx):
     high = [r for r in runs if r.metric("latency_steps.max") > LATENCY_STEPS]
     low_tunnel = [r for r in low if r.metric("tunneling")]
     high_tunnel = [r for r in high if r.metric("tunneling")]
-    measured = (f"max latency <= {LATENCY_STEPS} steps: {len(low_tunnel)} of {plural(len(low), 'run')} tunnel; "
-                f"max latency > {LATENCY_STEPS} steps: {len(high_tunnel)} of {plural(len(high), 'run')} tunnel")
+    measured = (f"max latency <= {LATENCY_STEPS} steps: {statistics.rate_text(len(low_tunnel), len(low))} runs "
+                f"tunnel; max latency > {LATENCY_STEPS} steps: {statistics.rate_text(len(high_tunnel), len(high))} "
+                "runs tunnel")
     safe = [r.metric("latency_steps.max") for r in runs if not r.metric("tunneling")]
     if high_tunnel:
         measured += (f"; no pass-through up to a max latency of {max(safe, default=0):.0f} steps, pass-through "

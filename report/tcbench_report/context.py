@@ -7,7 +7,7 @@ import matplotlib
 matplotlib.use("Agg")  # files only: no display on a build machine
 import matplotlib.pyplot as plt  # noqa: E402
 
-from . import pairing  # noqa: E402
+from . import pairing, statistics  # noqa: E402
 
 FOOTER_CHARS_PER_INCH = 22  # about that many 6 pt characters fit in an inch
 FOOTER_LINE_INCHES = 0.1
@@ -61,6 +61,9 @@ def wrap(text, width):
     return lines + [line]
 
 
+MAX_NAMED_RUNS = 24  # a figure's footer names its runs up to this many
+
+
 class Context:
     """Shared by all figures of one report: the output folder and every loaded run."""
 
@@ -80,7 +83,11 @@ class Context:
 
     def sign(self, fig, title, runs):
         """Write the title, runs, build and machine under the plot, and lay out around it."""
-        text = f"{title}. Runs: {', '.join(r.name for r in runs)}. {provenance(runs)}."
+        # Past a few dozen runs (seeds of a sweep) their names would bury the plot: count them instead;
+        # the report's page lists every one under the figure.
+        names = (", ".join(r.name for r in runs) if len(runs) <= MAX_NAMED_RUNS else
+                 f"{len(runs)} runs in {len(statistics.repeats(runs))} configurations, listed in the report")
+        text = f"{title}. Runs: {names}. {provenance(runs)}."
         width_in, height_in = fig.get_size_inches()
         lines = wrap(text, int(width_in * FOOTER_CHARS_PER_INCH))
         fig.text(0.01, 0.005, "\n".join(lines), fontsize=6, va="bottom", ha="left", color="0.35")
@@ -90,6 +97,8 @@ class Context:
     def save(self, fig, stem, title, caption, runs):
         """Sign fig, write it as PNG and SVG, and return its Section."""
         runs = unique(runs)
+        note = statistics.runs_note(runs)
+        caption = f"{caption} {note}".strip() if note else caption
         self.sign(fig, title, runs)
         for ext in ("png", "svg"):
             fig.savefig(os.path.join(self.fig_dir, f"{stem}.{ext}"), dpi=110)

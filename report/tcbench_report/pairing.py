@@ -99,9 +99,11 @@ DIVERGENCE = "divergence.rms_m.final"  # the divergence a figure and the claims 
 
 
 def is_noise_floor(run):
-    """A noise-floor run: full, no budget, its initial state perturbed (an override `perturb.*`); its summary
-    divergence is full's own under that perturbation."""
-    return is_reference(run) and any(perturbation_override(o) for o in run.overrides)
+    """A noise-floor run: full, no budget, its initial positions nudged (an override `perturb.position=...`)
+    and compared with the full run (it has a summary divergence: full's own under that nudge). A full run
+    whose repeats are jittered (`perturb.*` in a sweep's sets, no divergence) is a reference, not a floor."""
+    return (is_reference(run) and run.metric("divergence.compared_steps") is not None
+            and any(o.partition("=")[0].strip() == PERTURB_PREFIX + "position" for o in run.overrides))
 
 
 def floor_setup(run):

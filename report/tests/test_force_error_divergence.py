@@ -113,7 +113,7 @@ class ForceErrorFigure(unittest.TestCase):
             run("i3 explicit", budget="full-work/3", response="explicit", fe=force(0.2)),
             run("undefined", budget="full-work/10", fe=force(None)),
             run("old", budget="full-work/3", seed=1),  # recorded without --force-reference
-            run("floor", "full", overrides=[PERTURB], fe=force(0.0))]
+            run("floor", "full", overrides=[PERTURB], fe=force(0.0), div=diverged(1e-6))]
 
     def test_rows_by_scene_and_response_without_floor_or_missing_runs(self):
         rows = force_error.rows(self.RUNS)

@@ -1,7 +1,7 @@
 """Helpers shared by several figures (not a figure: the leading underscore)."""
 from collections import defaultdict
 
-from .. import pairing
+from .. import pairing, statistics
 
 
 def by_scene(runs):
@@ -105,39 +105,51 @@ def bars_width(runs):
 
 
 def budget_bars(ax, ctx, runs, key, colours, note=None):
-    """One bar per run of summary `key` (> 0: log scales), grouped by budget along x and coloured by
-    method; hatched with a red edge when the run is not ok; a black segment across each bar at its
-    reference's value (full, no budget, same setup). note(run) -> extra text written above the bar.
+    """One bar per configuration of summary `key` (> 0: log scales), grouped by budget along x and
+    coloured by method: a single run's value, or the median of a configuration's repeats with its
+    bootstrap 95 % interval as a whisker; hatched with a red edge when a run is not ok; a black segment
+    across each bar at its reference's value (full, no budget, same setup; the references' median).
+    note(run) -> extra text written above a single run's bar.
     Returns (the runs drawn and their references, the values drawn) for log_limits."""
     x, ticks, labels, used, values = 0.0, [], [], [], []
     for label, members in budget_groups(runs):
         start = x
-        for r in members:
-            value = r.metric(key)
-            ok = r.status == "ok"
+        # Repeats of one configuration (runs that differ only by seed) share one bar: their median, with
+        # its bootstrap 95 % interval as a whisker (statistics.py).
+        for group in statistics.repeats(members):
+            r = group[0]
+            measured = [m.metric(key) for m in group if m.metric(key) is not None]
+            value, lo, hi = statistics.bootstrap_median(measured) if measured else (None, None, None)
+            ok = all(m.status == "ok" for m in group)
             if value is not None and value > 0:
                 ax.bar(x, value, width=0.8, color=colours[r.method_label], hatch=None if ok else "xx",
                        edgecolor="none" if ok else "red", linewidth=0.8)
                 values.append(value)
-            ref = ctx.reference(r)
-            ref_value = ref.metric(key) if ref else None
+                if lo is not None and lo > 0:
+                    ax.errorbar(x, value, yerr=[[value - lo], [hi - value]], color="0.2", lw=0.8, capsize=2)
+                    values.extend([lo, hi])
+            refs = [ref for ref in (ctx.reference(m) for m in group) if ref is not None]
+            ref_values = [ref.metric(key) for ref in refs if ref.metric(key) is not None]
+            ref_value = statistics.median(ref_values) if ref_values else None
             if ref_value is not None and ref_value > 0:
                 ax.hlines(ref_value, x - 0.48, x + 0.48, colors="k", linewidth=1.4)
                 values.append(ref_value)
-                used.append(ref)
+                used.extend(refs)
             text = "n/a" if value is None else f"{value:.3g}"
-            text += "" if ok else f", {r.status}"
-            extra = note(r) if note else None
+            if len(group) > 1:
+                text = f"median of {len(group)}: {text}" + (f" [{lo:.3g}, {hi:.3g}]" if lo is not None else "")
+            bad = [m for m in group if m.status != "ok"]
+            if bad:
+                text += f", {bad[0].status}" if len(group) == 1 else f", {len(bad)} of {len(group)} not ok"
+            extra = note(r) if note and len(group) == 1 else None
             if extra:
                 text += f", {extra}"
-            if pairing.is_noise_floor(r):  # full under a perturb.* override: the divergence floor, not another full
+            if pairing.is_noise_floor(r):  # full nudged by perturb.position: the divergence floor, not another full
                 text += ", noise-floor run (perturbed)"
-            if len(members) > 1 and len({m.seed for m in members if m.method_label == r.method_label}) > 1:
-                text = f"seed {r.seed}: {text}"
-            top = max([v for v in (value, ref_value) if v is not None and v > 0] or [min(values, default=1)])
+            top = max([v for v in (value, ref_value, hi) if v is not None and v > 0] or [min(values, default=1)])
             ax.text(x, top * 1.08, text, rotation=90,
                     ha="center", va="bottom", fontsize=5.5)
-            used.append(r)
+            used.extend(group)
             x += 1
         ticks.append((start + x - 1) / 2)
         labels.append(label)
