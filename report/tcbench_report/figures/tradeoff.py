@@ -7,7 +7,7 @@ steps beside its minimum, since one bad step makes the minimum 0. One row pair p
 method (and setup) joined across its budgets from the largest to the smallest.
 """
 from ..context import plt
-from .. import pairing
+from .. import pairing, statistics
 from ._common import by_scene, method_order
 
 TITLE = "The speed/accuracy trade"
@@ -43,8 +43,8 @@ def curves(runs):
     varies = [len({s[k] for s in setups}) > 1 for k in range(4)]  # scene, seed, response, overrides
     out = {}
     for r, (_, seed, response, overrides) in zip(runs, setups):
-        parts = ([f"{response} response"] if varies[2] else []) + (list(overrides) if varies[3] else []) \
-            + ([f"rng={seed}"] if varies[1] else [])
+        # Seeds are repeats of one configuration: points() draws their median, so they share a curve.
+        parts = ([f"{response} response"] if varies[2] else []) + (list(overrides) if varies[3] else [])
         key = r.method_label + (" [" + " ".join(parts) + "]" if parts else "")
         out.setdefault(key, []).append(r)
     return dict(sorted(out.items(), key=lambda item: (method_order(item[1][0]), item[0])))
@@ -55,12 +55,23 @@ def points(runs, stat, key, whisker=None):
     its handling_ms.<whisker>; runs missing x or y are left out. In budget order (no budget, then from the
     largest budget to the smallest), so a curve follows the budget rather than zigzagging along x."""
     out = []
-    for r in sorted(runs, key=lambda r: (r.budget_order(), r.seed if r.seed is not None else -1, r.name)):
-        x, y = r.metric(handling(stat)), r.metric(key)
-        if x is None or y is None:
+    for group in statistics.repeats(runs):
+        measured = [m for m in group if m.metric(handling(stat)) is not None and m.metric(key) is not None]
+        if not measured:
             continue
-        out.append((x, y, r.metric(handling(whisker)) if whisker else None, r))
-    return out
+        # Repeats (seeds) of one configuration: one point at the medians, its first run standing for it.
+        x = statistics.median([m.metric(handling(stat)) for m in measured])
+        y = statistics.median([m.metric(key) for m in measured])
+        ws = [m.metric(handling(whisker)) for m in measured if whisker and m.metric(handling(whisker)) is not None]
+        out.append((x, y, statistics.median(ws) if ws else None, measured[0]))
+    return sorted(out, key=lambda p: (p[3].budget_order(), p[3].seed if p[3].seed is not None else -1, p[3].name))
+
+
+def spread(runs, point_run, key):
+    """(lo, hi) of the bootstrap 95 % interval of `key` over point_run's repeats among runs, or None."""
+    group = [r for r in runs if statistics.configuration(r) == statistics.configuration(point_run)]
+    _, lo, hi = statistics.bootstrap_median([r.metric(key) for r in group if r.metric(key) is not None])
+    return None if lo is None else (lo, hi)
 
 
 def scenes_drawn(runs):
@@ -127,7 +138,11 @@ def draw(ctx, runs):
                             for x, y, _, r in (pts[0], pts[-1]):
                                 ax.annotate(r.budget_label, (x, y), xytext=(3, 3), textcoords="offset points",
                                             fontsize=5.5, color=colours[name])
-                        for x, y, w, _ in pts:
+                        for x, y, w, r in pts:
+                            interval = spread(members, r, key)
+                            if interval is not None:
+                                ax.errorbar(x, y, yerr=[[y - scale * interval[0]], [scale * interval[1] - y]],
+                                            color=colours[name], lw=0.7, capsize=1.5)
                             if w is not None and w > x:
                                 whiskers = True
                                 ax.plot([x, w], [y, y], color=colours[name], lw=0.8, alpha=0.6, marker="|",
@@ -142,7 +157,8 @@ def draw(ctx, runs):
         legend(axes[2 * number][-1], colours, used_styles, whiskers)
         sources += rs
     return ctx.save(fig, FILE, TITLE,
-                    "Each point is one run; one curve per method across its budgets, joined from the largest budget "
+                    "Each point is one run, or the medians of a configuration's repeats (seeds) with the "
+                    "accuracy's bootstrap 95 % interval as a vertical bar; one curve per method across its budgets, joined from the largest budget "
                     "to the smallest (the recall panels name both ends). Upper row of each scene: accuracy against "
                     "the p99 of per-step collision handling time (summary handling_ms.p99), a whisker reaching the "
                     "slowest step (max); lower row: the same against the median (p50), which flatters methods whose "
