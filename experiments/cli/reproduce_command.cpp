@@ -30,8 +30,8 @@ class ReproduceCommand final : public Command {
   explicit ReproduceCommand(CLI::App& parent) {
     app = parent.add_subcommand("reproduce", "Run the paper's experiment set and draw the report");
     app->footer(
-        "Runs every sweep in experiments/sweeps/paper/ (about an hour on 2 cores, most of it the stack in both\n"
-        "response modes; --quick: each run shortened to the sweep's quick_steps, about 10 min), then\n"
+        "Runs every sweep in experiments/sweeps/paper/ (about two hours on 2 cores, most of it the stack: both\n"
+        "response modes and five jittered seeds; --quick: shorter runs, fewer seeds, about 15 min), then\n"
         "`tcbench report DIR` (DIR/report/index.html), then (not with --quick) checks\n"
         "experiments/thresholds/paper.toml against the runs (DIR/check.txt).\n"
         "Exit status: 0 all runs ok and all checks pass; 1 some run unstable or failed, or a check failed (the\n"
