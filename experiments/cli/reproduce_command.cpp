@@ -31,7 +31,7 @@ class ReproduceCommand final : public Command {
     app = parent.add_subcommand("reproduce", "Run the paper's experiment set and draw the report");
     app->footer(
         "Runs every sweep in experiments/sweeps/paper/ (about two hours on 2 cores, most of it the stack: both\n"
-        "response modes and five jittered seeds; --quick: shorter runs, fewer seeds, about 15 min), then\n"
+        "response modes and five jittered seeds; --quick: shorter runs, fewer seeds, about 20 min), then\n"
         "`tcbench report DIR` (DIR/report/index.html), then (not with --quick) checks\n"
         "experiments/thresholds/paper.toml against the runs (DIR/check.txt).\n"
         "Exit status: 0 all runs ok and all checks pass; 1 some run unstable or failed, or a check failed (the\n"
