@@ -105,8 +105,11 @@ def by_budget(runs):
 
 
 def where(run, group):
-    """How the evidence names a run within its budget's group: the budget, and the seed when it repeats."""
-    return run.budget_label + (f" (seed {run.seed})" if len(group) > 1 else "")
+    """How the evidence names a run within its budget's group: the budget, and the seed when it repeats,
+    with the jitter its seed drew (a jittered seed 0 is not the unperturbed seed 0 of another sweep)."""
+    jitter = statistics.jitter_text(run)
+    return run.budget_label + (f" (seed {run.seed}{', jittered: ' + jitter if jitter else ''})"
+                               if len(group) > 1 else "")
 
 
 def per_budget_verdict(results):
