@@ -96,20 +96,55 @@ def share(good, total):
     return f"partly: {statistics.rate_text(good, total)} runs"
 
 
+def setting(run):
+    """statistics.configuration without the scene: what tells runs of one budget apart besides their seed
+    (the evidence reads several scenes' runs and names the scene per run)."""
+    return statistics.configuration(run)[1:]
+
+
 def by_budget(runs):
-    """[(budget label, [runs])] from the largest budget to the smallest (full-work/2 before full-work/10)."""
+    """[(label, [runs])] from the largest budget to the smallest (full-work/2 before full-work/10), and within
+    a budget one group per configuration (its repeats, by seed: a jittered sweep's seeds are not pooled with
+    another sweep's unjittered run). The label is the budget, and where several configurations share it,
+    what sets them apart (the jitter their seeds drew, else their overrides, else their length)."""
     groups = {}
     for r in sorted(runs, key=lambda r: (r.budget_order(), r.seed if r.seed is not None else -1, r.name)):
-        groups.setdefault(r.budget_label, []).append(r)
-    return list(groups.items())
+        groups.setdefault((r.budget_label, setting(r)), []).append(r)
+    labels = {}
+    for label, _ in groups:
+        labels[label] = labels.get(label, 0) + 1
+    out = []
+    for (label, _), group in sorted(groups.items(), key=lambda item: (item[1][0].budget_order(),
+                                                                       min(statistics.seed_order(r) for r in item[1]))):
+        if labels[label] > 1:
+            siblings = [g for (other, _), g in groups.items() if other == label]
+            label = f"{label} ({apart(group[0], [g[0] for g in siblings])})"
+        out.append((label, group))
+    return out
 
 
-def where(run, group):
-    """How the evidence names a run within its budget's group: the budget, and the seed when it repeats,
-    with the jitter its seed drew (a jittered seed 0 is not the unperturbed seed 0 of another sweep)."""
+def apart(run, others):
+    """What sets run's configuration apart from the others of its budget, in words."""
+    jitters = {statistics.jitter_text(o) for o in others}
+    if len(jitters) > 1:
+        jitter = statistics.jitter_text(run)
+        return f"jittered: {jitter}" if jitter else "not jittered"
+    overrides = {tuple(sorted(o.overrides)) for o in others}
+    if len(overrides) > 1:
+        return " ".join(sorted(run.overrides)) or "no overrides"
+    steps = {o.record.get("steps") for o in others}
+    if len(steps) > 1:
+        return f"{run.record.get('steps')} steps"
+    return run.method_label + (f", {run.response} response" if len({o.response for o in others}) > 1 else "")
+
+
+def where(run, group, label=None):
+    """How the evidence names a run within its budget's group: the budget (or the group's label from
+    by_budget), and the seed when it repeats, with the jitter its seed drew (a jittered seed 0 is not the
+    unperturbed seed 0 of another sweep)."""
     jitter = statistics.jitter_text(run)
-    return run.budget_label + (f" (seed {run.seed}{', jittered: ' + jitter if jitter else ''})"
-                               if len(group) > 1 else "")
+    return (label or run.budget_label) + (f" (seed {run.seed}{', jittered: ' + jitter if jitter else ''})"
+                                          if len(group) > 1 else "")
 
 
 def per_budget_verdict(results):
@@ -247,14 +282,73 @@ SETTLED = (("kinetic energy mean", "settled_kinetic_energy.mean", "J"),
            ("max speed median", "settled_max_speed_median", "m/s"))  # over the run's second half
 
 
+def resting_outcomes(run, ctx):
+    """{outcome: True/False/None (not measured)} of one run of the resting stack."""
+    h0, h1 = run.metric("top_centre_height_m.initial"), run.metric("top_centre_height_m.final")
+    ratio = jitter_ratio(run, ctx)
+    tunnelling = run.metric("tunneling")
+    standing = None if h0 is None or h1 is None else h1 >= STANDING_FRACTION * h0
+    plausible = None if ratio is None else ratio <= JITTER_FACTOR
+    out = {"stable": run.status == "ok", "standing": standing,
+           "without pass-through": None if tunnelling is None else tunnelling == 0,
+           "with plausible jitter": plausible}
+    out["resting plausibly"] = all(v is True for v in out.values())
+    return out
+
+
+def repeated_rest(label, group, ctx):
+    """(text, good) for a configuration's repeats: each outcome as a rate with its Wilson 95 % interval
+    ("standing in 4/5 runs (80 %, 95 % CI 38-96 %)"), the median jitter and its multiple of full's, and the
+    seeds that missed an outcome."""
+    outcomes = [resting_outcomes(r, ctx) for r in group]
+    n = len(group)
+    parts = []
+    for what in ("stable", "standing", "without pass-through", "with plausible jitter"):
+        measured = [o[what] for o in outcomes if o[what] is not None]
+        text = statistics.outcome_text(what, sum(measured), len(measured))
+        parts.append(text + (f" ({n - len(measured)} not measured)" if len(measured) < n else ""))
+    good = sum(o["resting plausibly"] for o in outcomes)
+    jitter, lo, hi, known = statistics.summarise(r.metric("jitter") for r in group)
+    ratio, r_lo, r_hi, _ = statistics.summarise(jitter_ratio(r, ctx) for r in group)
+    if jitter is not None:
+        text = f"median jitter (RMS) {jitter:.3g} m/s" + (f" [{lo:.3g}, {hi:.3g}]" if lo is not None else "")
+        if ratio is not None:
+            text += f", {ratio:.3g}x full's" + (f" [{r_lo:.3g}, {r_hi:.3g}]" if r_lo is not None else "")
+        parts.append(text + f" (n={known}; bootstrap 95 % intervals; full: the same seed's)")
+    missed = [f"seed {r.seed}: " + ", ".join(MISSED[what](r, v) for what, v in o.items()
+                                             if what in MISSED and v is not True)
+              for r, o in zip(group, outcomes) if not o["resting plausibly"]]
+    jitter_drawn = statistics.jitter_text(group[0])
+    head = f"{label}, {n} seeds" + (f" (jittered: {jitter_drawn})" if jitter_drawn and "jittered" not in label else "")
+    text = f"{head}: " + ", ".join(parts) + "; " + statistics.outcome_text("resting plausibly (all four)", good, n)
+    if missed:
+        text += " (" + "; ".join(missed) + ")"
+    return text, good
+
+
+MISSED = {  # how a repeat that missed an outcome is named (v: False, or None when not measured)
+    "stable": lambda r, v: f"status {r.status}",
+    "standing": lambda r, v: "fallen" if v is False else "height not measured",
+    "without pass-through": lambda r, v: "passed through" if v is False else "tunnelling not measured",
+    "with plausible jitter": lambda r, v: "implausible jitter" if v is False else "jitter not compared",
+}
+
+
 def rests_plausibly(runs, ctx):
-    """Per budget: stable, still standing, nothing passed through, jitter within JITTER_FACTOR of the
-    reference's. The evidence adds how settled the stack is (kinetic energy and fastest vertex over the
-    second half), beside the reference's."""
+    """Per budget (and configuration): stable, still standing, nothing passed through, jitter within
+    JITTER_FACTOR of the reference's. A configuration with repeats gives each outcome as a rate with its
+    Wilson 95 % interval, and holds at its budget only when every repeat rests plausibly. The evidence adds
+    how settled the stack is (kinetic energy and fastest vertex over the second half), beside the
+    reference's."""
     if not runs:
         return UNMEASURED, UNMEASURED
     notes, results = [], []
     for label, group in by_budget(runs):
+        if len(group) > 1:
+            text, good = repeated_rest(label, group, ctx)
+            notes.append(text)
+            results.append((label, good, len(group)))
+            continue
         good = 0
         for r in group:
             ref = ctx.reference(r)
@@ -271,7 +365,7 @@ def rests_plausibly(runs, ctx):
                 if ratio is not None else " (no reference to compare)")
             settled = [f"{name} {vs_reference(r, ref, key, unit)}" for name, key, unit in SETTLED
                        if r.metric(key) is not None]
-            notes.append(f"{where(r, group)}: {'ok' if r.status == 'ok' else 'status ' + r.status}, {height}, "
+            notes.append(f"{where(r, group, label)}: {'ok' if r.status == 'ok' else 'status ' + r.status}, {height}, "
                          f"tunnelling {tunnelling}, {jit}" + (", settled: " + ", ".join(settled) if settled else ""))
         results.append((label, good, len(group)))
     return "; ".join(notes), per_budget_verdict(results)
@@ -284,9 +378,21 @@ def jitters(runs, ctx):
     if not rows:
         return UNMEASURED, UNMEASURED
     loud = [r for r, x in rows if x > JITTER_FACTOR]
-    measured = "; ".join(f"{r.name}: jitter (RMS) {r.metric('jitter'):.3g} m/s = {x:.3g}x full's"
-                         for r, x in rows)
-    return measured, share(len(loud), len(rows))
+    ratios = dict((r.name, x) for r, x in rows)
+    notes = []
+    for group in statistics.repeats([r for r, _ in rows]):
+        if len(group) == 1:
+            r = group[0]
+            notes.append(f"{r.name}: jitter (RMS) {r.metric('jitter'):.3g} m/s = {ratios[r.name]:.3g}x full's")
+            continue
+        # Repeats: the outcome as a rate with its Wilson interval, the ratio as a median with its bootstrap one.
+        k = sum(1 for r in group if ratios[r.name] > JITTER_FACTOR)
+        ratio, lo, hi, n = statistics.summarise(ratios[r.name] for r in group)
+        jitter = statistics.jitter_text(group[0])
+        notes.append(f"{group[0].label()}, {n} seeds{' (jittered: ' + jitter + ')' if jitter else ''}: "
+                     + statistics.outcome_text(f"jitter above {JITTER_FACTOR:g}x full's", k, n)
+                     + f", median {ratio:.3g}x full's [{lo:.3g}, {hi:.3g}] (bootstrap 95 %; full: the same seed's)")
+    return "; ".join(notes), share(len(loud), len(rows))
 
 
 ABLATION = "interruptible_no_extrapolation"  # the paper's method without force extrapolation
@@ -306,7 +412,8 @@ def extrapolation_steadies(runs, ctx):
             compared += 1
             good += mine < theirs
             ratio = f" ({mine / theirs:.2f}x)" if theirs else ""
-            notes.append(f"{where(r, group)}: jitter (RMS) {mine:.3g} m/s with extrapolation, {theirs:.3g} m/s without"
+            notes.append(f"{where(r, group, label)}: jitter (RMS) {mine:.3g} m/s with extrapolation, {theirs:.3g} m/s "
+                         "without"
                          + ratio)
         if compared:
             results.append((label, good, compared))
@@ -314,6 +421,34 @@ def extrapolation_steadies(runs, ctx):
         return (f"no {ABLATION} run with jitter in the same setup at the same budget" if runs else UNMEASURED,
                 UNMEASURED)
     return "; ".join(notes), per_budget_verdict(results)
+
+
+def repeated_pass_through(runs):
+    """'; pass-through per configuration (12 with 10 seeds each): interruptible @ full-work/64 in 3/10 runs
+    (30 %, 95 % CI 11-60 %), max latency median 7 [6, 9] (n=10) steps; none in the other 11 (0/10 runs each:
+    95 % CI 0-28 %)'; '' when no configuration has repeats."""
+    groups = [g for g in statistics.repeats(runs) if len(g) > 1]
+    if not groups:
+        return ""
+    scenes = len({r.scene for r in runs}) > 1
+    tunnelled, clean = [], []
+    for g in groups:
+        k = sum(1 for r in g if r.metric("tunneling"))
+        if not k:
+            clean.append(len(g))
+            continue
+        latency = statistics.estimate_text(*statistics.summarise(r.metric("latency_steps.max") for r in g),
+                                           fmt="{:.0f}")
+        name = g[0].label() + (f" ({g[0].scene})" if scenes else "")
+        tunnelled.append(f"{statistics.outcome_text(name, k, len(g))}, max latency {latency} steps")
+    sizes = sorted({len(g) for g in groups})
+    text = (f"; pass-through per configuration ({len(groups)} with "
+            f"{sizes[0] if len(sizes) == 1 else f'{sizes[0]} to {sizes[-1]}'} seeds each): " + "; ".join(tunnelled))
+    if clean:
+        each = (f" (0/{clean[0]} runs each: 95 % CI 0-{100 * statistics.wilson_interval(0, clean[0])[1]:.0f} %)"
+                if len(set(clean)) == 1 else "")
+        text += ("; " if tunnelled else "") + f"none in {'the other ' if tunnelled else ''}{len(clean)}{each}"
+    return text
 
 
 def latency_bound(runs, ctx):
@@ -332,6 +467,7 @@ def latency_bound(runs, ctx):
     if high_tunnel:
         measured += (f"; no pass-through up to a max latency of {max(safe, default=0):.0f} steps, pass-through "
                      f"from {min(r.metric('latency_steps.max') for r in high_tunnel):.0f} steps")
+    measured += repeated_pass_through(runs)
     if low_tunnel:
         verdict = FAILS
     elif low and high_tunnel:

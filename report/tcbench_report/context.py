@@ -94,10 +94,11 @@ class Context:
         reserved = min(0.5, (len(lines) * FOOTER_LINE_INCHES + 0.05) / height_in)
         fig.tight_layout(rect=(0, reserved, 1, 1))
 
-    def save(self, fig, stem, title, caption, runs):
-        """Sign fig, write it as PNG and SVG, and return its Section."""
+    def save(self, fig, stem, title, caption, runs, repeats=statistics.MEDIANS):
+        """Sign fig, write it as PNG and SVG, and return its Section. The caption gains how many runs each
+        configuration rests on, what the figure draws for repeats (`repeats`) and the jitter the seeds drew."""
         runs = unique(runs)
-        note = statistics.runs_note(runs)
+        note = statistics.runs_note(runs, repeats)
         caption = f"{caption} {note}".strip() if note else caption
         self.sign(fig, title, runs)
         for ext in ("png", "svg"):

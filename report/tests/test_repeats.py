@@ -5,12 +5,11 @@ Run by ctest with /usr/bin/python3."""
 import os
 import sys
 import unittest
-from types import SimpleNamespace
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 
 from tcbench_report import claims, pairing, statistics  # noqa: E402
-from tcbench_report.figures import hash_sensitivity, latency  # noqa: E402
+from tcbench_report.figures import latency  # noqa: E402
 from tcbench_report.loader import Run  # noqa: E402
 
 JITTER = ["perturb.velocity=0.1", "perturb.position=0.005"]
@@ -87,25 +86,6 @@ class Verdicts(unittest.TestCase):
         self.assertEqual(claims.per_budget_verdict([("full-work/3", 1, 1)]),
                          f"{claims.HOLDS} at its budget (full-work/3)")  # one run: as before
         self.assertEqual(claims.share(0, 10), f"{claims.FAILS} (0/10 (0 %, 95 % CI 0-28 %) runs)")
-
-
-class HashSensitivity(unittest.TestCase):
-    def test_factors_from_what_the_run_resolved(self):
-        c = {"cell_size_m": 0.02, "mean_edge_m": 0.01, "table_size": 402, "tets": 100}
-        half = dict(c, cell_size_m=0.005)
-        runs = [run("default", "full", budget="none", overrides=(), scene="plates20", collision=c, recall_mean=1.0),
-                run("cell2", "full", budget="none", overrides=("collision.cell_size=auto*2",), scene="plates20",
-                    collision=c, recall_mean=0.9),
-                run("cellhalf", "full", budget="none", overrides=("collision.cell_size=auto*0.5",),
-                    scene="plates20", collision=half, recall_mean=0.8)]
-        self.assertEqual([hash_sensitivity.varied(r) for r in runs], [None, "cell_size", "cell_size"])
-        self.assertEqual(hash_sensitivity.factor(runs[0], "table_size"), 2.0)
-        pts = hash_sensitivity.points(runs, "plates20", "cell_size", "recall_mean")
-        self.assertEqual([(x, y) for x, y, *_ in pts["full"]], [(0.5, 0.8), (2.0, 0.9), (2.0, 1.0)])
-        table = hash_sensitivity.points(runs, "plates20", "table_size", "recall_mean")
-        self.assertEqual([r for r in table["full"]], [(2.0, 1.0, None, None, 1)])  # only the default run
-        ctx = SimpleNamespace(missing=lambda title, why: ("missing", why))
-        self.assertEqual(hash_sensitivity.draw(ctx, runs[:1])[0], "missing")
 
 
 if __name__ == "__main__":

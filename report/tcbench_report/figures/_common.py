@@ -104,12 +104,13 @@ def bars_width(runs):
     return max(3.5, 0.32 * len(runs) + 0.5 * len(budget_groups(runs)) + 1.2)
 
 
-def budget_bars(ax, ctx, runs, key, colours, note=None):
+def budget_bars(ax, ctx, runs, key, colours, note=None, group_note=None):
     """One bar per configuration of summary `key` (> 0: log scales), grouped by budget along x and
     coloured by method: a single run's value, or the median of a configuration's repeats with its
     bootstrap 95 % interval as a whisker; hatched with a red edge when a run is not ok; a black segment
     across each bar at its reference's value (full, no budget, same setup; the references' median).
-    note(run) -> extra text written above a single run's bar.
+    note(run) -> extra text written above a single run's bar; group_note(runs) the same for a configuration's
+    repeats (a rate: "collapsed 2/5 (...)").
     Returns (the runs drawn and their references, the values drawn) for log_limits."""
     x, ticks, labels, used, values = 0.0, [], [], [], []
     for label, members in budget_groups(runs):
@@ -141,7 +142,7 @@ def budget_bars(ax, ctx, runs, key, colours, note=None):
             bad = [m for m in group if m.status != "ok"]
             if bad:
                 text += f", {bad[0].status}" if len(group) == 1 else f", {len(bad)} of {len(group)} not ok"
-            extra = note(r) if note and len(group) == 1 else None
+            extra = (note(r) if note else None) if len(group) == 1 else (group_note(group) if group_note else None)
             if extra:
                 text += f", {extra}"
             if pairing.is_noise_floor(r):  # full nudged by perturb.position: the divergence floor, not another full

@@ -1,13 +1,15 @@
 """Side-view animation of recorded runs, the reference beside a budgeted run.
 
 Drawn from the sweeps that declare "animation" and recorded frames (--record);
-one GIF per scene, named after the scene.
+one GIF per scene, named after the scene. A trajectory has no median: where the
+runs shown have repeats (other seeds), the caption says which seed is shown and
+of how many.
 """
 import os
 import re
 
 from ..context import Section, plt
-from .. import pairing
+from .. import pairing, statistics
 from ._common import by_scene
 
 TITLE = "Animation"
@@ -48,7 +50,22 @@ def bounds(frames):
     return (min(xs) - pad, max(xs) + pad), (min(ys) - pad, max(ys) + pad)
 
 
-def animate(ctx, scene, runs):
+def seeds_note(chosen, runs):
+    """' Each is one run of its configuration: interruptible @ full/3 seed 0 of 5, ...' for the chosen runs that
+    have repeats among runs (with the jitter their seeds drew); '' when none has."""
+    parts = []
+    for r in chosen:
+        n = sum(1 for m in runs if statistics.configuration(m) == statistics.configuration(r))
+        if n > 1:
+            parts.append(f"{r.label()} seed {r.seed} of {n} seeds")
+    if not parts:
+        return ""
+    jitters = sorted({statistics.jitter_text(r) for r in chosen} - {""})
+    return (" One run of each configuration is shown, not a median: " + ", ".join(parts) + "."
+            + (f" Initial-state jitter drawn per seed: {'; '.join(jitters)}." if jitters else ""))
+
+
+def animate(ctx, scene, runs, note=""):
     from matplotlib.animation import FuncAnimation, PillowWriter
 
     frames = [read_pvd(r.dir) for r in runs]
@@ -76,7 +93,7 @@ def animate(ctx, scene, runs):
     FuncAnimation(fig, show, frames=count, blit=False).save(os.path.join(ctx.fig_dir, name),
                                                             writer=PillowWriter(fps=FPS))
     plt.close(fig)
-    return Section(title, f"Side view of {', '.join(r.label() for r in runs)}.", list(runs),
+    return Section(title, f"Side view of {', '.join(r.label() for r in runs)}.{note}", list(runs),
                    image=f"figures/{name}")
 
 
@@ -91,5 +108,5 @@ def draw(ctx, runs):
             sections.append(ctx.missing(f"{TITLE}: {scene}", "needs a recorded reference run and a recorded "
                                                             "budgeted run"))
         else:
-            sections.append(animate(ctx, scene, chosen))
+            sections.append(animate(ctx, scene, chosen, seeds_note(chosen, rs)))
     return sections

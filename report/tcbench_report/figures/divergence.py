@@ -3,11 +3,14 @@ under a 1e-9 m perturbation of the initial state (summary.divergence of the run 
 
 Drawn from every run with summary.divergence (runs with --reference: the sweep's full run). One column per
 contact response, three rows per scene: RMS vertex distance at the last compared step, the largest linear
-momentum difference, the orientation drift at the last compared step; one bar per method label and budget
-(seeds as separate bars), the floor marked across the bars and each bar labelled with its multiple of it.
+momentum difference, the orientation drift at the last compared step; one bar per method label and budget,
+the floor marked across the bars and each bar labelled with its multiple of it. A configuration with repeats
+(runs differing only by seed, each compared with its own seed's full run and floor) is one bar: the median
+over its runs with the bootstrap 95 % interval as a whisker, the median of their floors across it, and the
+median of the runs' multiples of their own floors (with its interval) as the label.
 """
 from ..context import plt
-from .. import pairing
+from .. import pairing, statistics
 from ..loader import response_order
 from ._common import broken, method_colours, method_order, response_title, tick_label
 
@@ -62,10 +65,42 @@ def bar_note(bar, key):
     return f"{value:.3g}\n{'floor is 0: no multiple' if floor_value == 0 else 'no floor'}"
 
 
-def tick(bar, row):
+def bar_groups(row):
+    """[[bar]]: the bars of one configuration together (repeats, by seed), in the row's order."""
+    groups = {}
+    for bar in row:
+        groups.setdefault(statistics.configuration(bar["run"]), []).append(bar)
+    return [sorted(g, key=lambda b: statistics.seed_order(b["run"])) for g in groups.values()]
+
+
+def group_values(group, key):
+    """(median value, lo, hi, median floor value, median multiple, its lo, its hi, n) of summary `key` over a
+    configuration's bars (None where no bar has it; lo, hi None below 2 values)."""
+    value, lo, hi, n = statistics.summarise(b["values"][key][0] for b in group)
+    floor_value = statistics.median([b["values"][key][1] for b in group if b["values"][key][1] is not None])
+    multiple, m_lo, m_hi, _ = statistics.summarise(b["values"][key][2] for b in group)
+    return value, lo, hi, floor_value, multiple, m_lo, m_hi, n
+
+
+def group_note(group, key):
+    """bar_note for one run; for repeats 'median of 5: 1.71e-04 [1.2e-04, 2.3e-04]\n357x floor [...]'."""
+    if len(group) == 1:
+        return bar_note(group[0], key)
+    value, lo, hi, floor_value, multiple, m_lo, m_hi, n = group_values(group, key)
+    if value is None:
+        return "n/a"
+    text = f"median of {n}: {value:.3g}" + (f"\n[{lo:.3g}, {hi:.3g}]" if lo is not None else "")
+    if multiple is not None:
+        return text + f"\n{multiple:.3g}x floor" + (f" [{m_lo:.3g}, {m_hi:.3g}]" if m_lo is not None else "")
+    return text + f"\n{NO_FLOOR if floor_value is None else 'no multiple (floor 0)'}"
+
+
+def tick(bar, row, group=None):
     r = bar["run"]
     text = broken(tick_label(r, with_scene=False))
-    if len({b["run"].seed for b in row}) > 1:
+    if group is not None and len(group) > 1:
+        text += f"\n(n={len(group)} seeds)"
+    elif len({b["run"].seed for b in row}) > 1:
         text += f"\nseed {r.seed}"
     overrides = {pairing.floor_setup(b["run"])[3] for b in row}
     if len(overrides) > 1:
@@ -77,19 +112,23 @@ def draw_panel(ax, row, key, colours):
     """Bars of summary `key`, log scale, the floor across each bar. Returns (values drawn, whether a floor was
     drawn)."""
     values, floors = [], {b["floor"].name for b in row if b["floor"] is not None}
-    for x, bar in enumerate(row):
-        value, floor_value, _ = bar["values"][key]
+    groups = bar_groups(row)
+    for x, group in enumerate(groups):
+        value, lo, hi, floor_value, *_ = group_values(group, key)
+        ok = all(b["run"].status == "ok" for b in group)
         if value is not None and value > 0:
-            ax.bar(x, value, width=0.6, color=colours[bar["run"].method_label],
-                   hatch=None if bar["run"].status == "ok" else "xx",
-                   edgecolor="none" if bar["run"].status == "ok" else "red")
+            ax.bar(x, value, width=0.6, color=colours[group[0]["run"].method_label],
+                   hatch=None if ok else "xx", edgecolor="none" if ok else "red")
             values.append(value)
+            if lo is not None and lo > 0:  # repeats: the median's bootstrap 95 % interval
+                ax.errorbar(x, value, yerr=[[value - lo], [hi - value]], color="0.2", lw=0.8, capsize=2)
+                values.extend([lo, hi])
         if floor_value is not None and floor_value > 0:
-            if len(floors) > 1:  # several floors (seeds, overrides): each bar's own
+            if len(floors) > 1:  # several floors (seeds, overrides): each bar's own (repeats: their median)
                 ax.hlines(floor_value, x - 0.4, x + 0.4, colors="k", linestyles="--", linewidth=1.2)
             values.append(floor_value)
-        top = max([v for v in (value, floor_value) if v is not None and v > 0] or [min(values, default=1.0)])
-        ax.text(x, top * 1.15, bar_note(bar, key), ha="center", va="bottom", fontsize=6)
+        top = max([v for v in (value, floor_value, hi) if v is not None and v > 0] or [min(values, default=1.0)])
+        ax.text(x, top * 1.15, group_note(group, key), ha="center", va="bottom", fontsize=6)
     if len(floors) == 1:
         floor_value = next(b["values"][key][1] for b in row if b["floor"] is not None)
         if floor_value is not None and floor_value > 0:
@@ -99,8 +138,8 @@ def draw_panel(ax, row, key, colours):
     ax.set_yscale("log")
     if values:
         ax.set_ylim(min(values) / 4, max(values) * 10)
-    ax.set_xticks(range(len(row)), [tick(b, row) for b in row], fontsize=6)
-    ax.set_xlim(-0.6, max(len(row), 2) - 0.4)
+    ax.set_xticks(range(len(groups)), [tick(g[0], row, g) for g in groups], fontsize=6)
+    ax.set_xlim(-0.6, max(len(groups), 2) - 0.4)
     ax.tick_params(axis="y", labelsize=7)
     return bool(floors)
 
@@ -131,7 +170,7 @@ def draw(ctx, runs):
     colours = method_colours(runs)  # over all runs in scope: a method's colour is the force error figure's too
     scenes = layout(rows)
     cols = max(len(columns) for _, columns in scenes)
-    widths = [max(4.0, 0.8 * max(len(columns[k][1]) for _, columns in scenes if k < len(columns)) + 1.2)
+    widths = [max(4.0, 0.8 * max(len(bar_groups(columns[k][1])) for _, columns in scenes if k < len(columns)) + 1.2)
               for k in range(cols)]
     fig, axes = plt.subplots(len(STATS) * len(scenes), cols,
                              figsize=(sum(widths) + 2.2, 3.2 * len(STATS) * len(scenes)), squeeze=False,
@@ -174,4 +213,6 @@ def draw(ctx, runs):
                     "diverge from any perturbation, so only a multiple of the floor means something. "
                     f"\"{NO_FLOOR}\": the sweep made none (noise_floor = 0). Full itself is the reference (0) "
                     "and not drawn.",
-                    used)
+                    used, "each bar is their median with its bootstrap 95 % interval, each run measured against "
+                          "its own seed's full run and floor, the dashed mark the median of those floors and the "
+                          "label the median multiple of them")

@@ -4,14 +4,16 @@ over the p99 of its per-step handling time, and where the error comes from (the 
 
 Drawn from every run with summary.force_error (runs with --force-reference). One row per scene and contact
 response: left, relative L2 error (median, whisker to the p95) against handling time p99, one marker per
-method label and budget (seeds as separate points); right, per run, the mean error beside each source's part
-of it, with the shares of missed and ghost points. Noise-floor runs (full under a perturb.* override) are left
-out: full against full from the same state, 0 by construction.
+method label and budget; right, per run, the mean error beside each source's part of it, with the shares of
+missed and ghost points. A configuration with repeats (runs differing only by seed) is one marker and one
+group of bars: the medians over its runs, the p50's and the mean's bootstrap 95 % interval as a black
+error bar. Noise-floor runs (full under a perturb.* override) are left out: full against full from the same
+state, 0 by construction.
 """
 import math
 
 from ..context import plt
-from .. import pairing
+from .. import pairing, statistics
 from ..loader import response_order
 from ._common import broken, method_colours, method_order, response_title, tick_label
 
@@ -73,20 +75,57 @@ def breakdown(run):
             "samples": run.metric("force_error.samples"), "undefined": run.metric("force_error.undefined_samples")}
 
 
+def group_point(group):
+    """point() of a configuration: one run's own, or for repeats the medians of x, p50 and p95 over the runs
+    with a point, with lo, hi (the p50's bootstrap 95 % interval) and n; None when no run has a point."""
+    points = [p for p in (point(r) for r in group) if p is not None]
+    if len(group) == 1 or not points:
+        return dict(points[0], lo=None, hi=None, n=len(points)) if points else None
+    p50, lo, hi = statistics.bootstrap_median_interval([p["p50"] for p in points])
+    return {"x": statistics.median([p["x"] for p in points]), "p50": p50,
+            "p95": statistics.median([p["p95"] for p in points]), "lo": lo, "hi": hi, "n": len(points)}
+
+
+def group_breakdown(group):
+    """breakdown() of a configuration: one run's own, or for repeats the medians over its runs of the mean
+    error (mean_interval: its bootstrap 95 % interval), of each source's part (over the runs it occurred in)
+    and of the missed and ghost shares; points, samples and undefined samples summed; n the runs."""
+    if len(group) == 1:
+        return dict(breakdown(group[0]), mean_interval=None, n=1)
+    bs = [breakdown(r) for r in group]
+
+    def med(values):
+        return statistics.median([v for v in values if v is not None])
+
+    mean, lo, hi = statistics.bootstrap_median_interval([b["mean"] for b in bs if b["mean"] is not None])
+    parts = {s: med(b["parts"].get(s) for b in bs) for s in SOURCES if any(s in b["parts"] for b in bs)}
+    points = {s: sum(b["points"].get(s, 0) for b in bs) for s in SOURCES if any(s in b["points"] for b in bs)}
+
+    def total(key):
+        values = [b[key] for b in bs if b[key] is not None]
+        return sum(values) if values else None
+
+    return {"mean": mean, "mean_interval": None if lo is None else (lo, hi), "parts": parts, "points": points,
+            "missed": med(b["missed"] for b in bs), "ghost": med(b["ghost"] for b in bs),
+            "samples": total("samples"), "undefined": total("undefined"), "n": len(group)}
+
+
 def share_text(value):
     return "n/a" if value is None else f"{100 * value:.3g} %"
 
 
 def top_of(members):
     """The highest bar of a breakdown panel (0 when none)."""
-    values = [v for r in members for b in [breakdown(r)] for v in [b["mean"], *b["parts"].values()] if v is not None]
+    values = [v for g in statistics.repeats(members) for b in [group_breakdown(g)]
+              for v in [b["mean"], *b["parts"].values(), *(b.get("mean_interval") or ())] if v is not None]
     return max(values + [0.0])
 
 
 def breakdown_note(b):
     """The text above a run's bars: missed and ghost shares (means over samples), each source's share of the
     run's force points, samples."""
-    note = f"missed {share_text(b['missed'])}\nghost {share_text(b['ghost'])}"
+    note = f"median of {b['n']} runs:\n" if b.get("n", 1) > 1 else ""
+    note += f"missed {share_text(b['missed'])}\nghost {share_text(b['ghost'])}"
     total = sum(b["points"].values())
     if total:
         note += "\npoints:" + "".join(f"\n{s} {100 * n / total:.0f} %" for s, n in b["points"].items())
@@ -114,19 +153,25 @@ def point_label(run, p):
 
 def draw_points(ax, members, colours, markers):
     """Left panel. Returns the runs drawn."""
-    drawn, values = [], []
-    for r in members:
-        p = point(r)
+    drawn, values, xs = [], [], []
+    for group in statistics.repeats(members):
+        p, r = group_point(group), group[0]
         if p is None:
             continue
         colour, marker = colours[r.method_label], markers[r.budget_label]
         if p["p95"] > p["p50"]:
             ax.plot([p["x"], p["x"]], [p["p50"], p["p95"]], color=colour, lw=1, alpha=0.7)
             ax.plot(p["x"], p["p95"], marker="_", color=colour, ms=8)
+        if p["lo"] is not None:  # repeats: the median p50's bootstrap 95 % interval
+            ax.errorbar(p["x"], p["p50"], yerr=[[p["p50"] - p["lo"]], [p["hi"] - p["p50"]]], color="k", lw=0.7,
+                        capsize=2)
+            values += [p["lo"], p["hi"]]
         ax.plot(p["x"], p["p50"], marker=marker, color=colour, ms=6, ls="none", mec="k", mew=0.4)
-        ax.annotate(point_label(r, p), (p["x"], p["p50"]), xytext=(5, -3), textcoords="offset points", fontsize=6)
+        label = point_label(r, p) + (f" (median of {p['n']})" if len(group) > 1 else "")
+        ax.annotate(label, (p["x"], p["p50"]), xytext=(5, -3), textcoords="offset points", fontsize=6)
         values += [p["p50"], p["p95"]]
-        drawn.append(r)
+        xs.append(p["x"])
+        drawn += group
     scale, linthresh = y_scale(values)
     if scale == "symlog":
         ax.set_yscale("symlog", linthresh=linthresh, linscale=0.4)
@@ -136,7 +181,7 @@ def draw_points(ax, members, colours, markers):
         ax.set_ylim(min(values) / 2, max(values) * 3)
     else:
         ax.set_ylim(0, max(values + [1e-3]) * 1.25)
-    ax.set_xlim(0, max([point(r)["x"] for r in drawn] + [1e-3]) * 1.2)
+    ax.set_xlim(0, max(xs + [1e-3]) * 1.2)
     ax.set_xlabel("p99 handling time per step (ms)", fontsize=8)
     ax.set_ylabel("force error, relative L2 per sampled step\n(marker: p50; whisker: to p95)", fontsize=8)
     ax.tick_params(labelsize=7)
@@ -147,23 +192,38 @@ def draw_breakdown(ax, members):
     """Right panel: per run, the mean error (grey) and each source's part (coloured). Returns the sources
     drawn."""
     width, used, top = 0.16, set(), 0.0
-    for k, r in enumerate(members):
-        b = breakdown(r)
+    groups = statistics.repeats(members)
+    for k, group in enumerate(groups):
+        b = group_breakdown(group)
         bars = [("mean", b["mean"], "0.35")] + [(s, b["parts"][s], SOURCE_COLOURS[s]) for s in SOURCES
-                                                if s in b["parts"]]
+                                                if s in b["parts"] and b["parts"][s] is not None]
         start = k - width * (len(bars) - 1) / 2
+        highest = 0.0
         for j, (name, value, colour) in enumerate(bars):
             if value is None:
                 continue
             ax.bar(start + j * width, value, width=width * 0.95, color=colour, linewidth=0)
-            ax.text(start + j * width, value, f" {value:.2g}", rotation=90, ha="center", va="bottom", fontsize=5)
+            tip = value
+            if name == "mean" and b["mean_interval"] is not None:  # repeats: the median's bootstrap interval
+                lo, hi = b["mean_interval"]
+                ax.errorbar(start + j * width, value, yerr=[[value - lo], [hi - value]], color="k", lw=0.7,
+                            capsize=1.5)
+                tip = max(value, hi)
+            ax.text(start + j * width, tip, f" {value:.2g}", rotation=90, ha="center", va="bottom", fontsize=5)
             used.add(name)
-            top = max(top, value)
-        ax.text(k, max([v for _, v, _ in bars if v is not None] + [0.0]) + 0.12 * top_of(members),
-                breakdown_note(b), ha="center", va="bottom", fontsize=5.5)
-    ax.set_xticks(range(len(members)), [broken(tick_label(r, with_scene=False)) + (f"\nseed {r.seed}" if len(
-        {m.seed for m in members}) > 1 else "") for r in members], fontsize=6)
-    ax.set_xlim(-0.6, max(len(members), 2) - 0.4)
+            highest = max(highest, tip)
+            top = max(top, tip)
+        ax.text(k, highest + 0.12 * top_of(members), breakdown_note(b), ha="center", va="bottom", fontsize=5.5)
+    seeds_vary = len({m.seed for m in members}) > 1
+
+    def tick(group):
+        text = broken(tick_label(group[0], with_scene=False))
+        if len(group) > 1:
+            return text + f"\n(n={len(group)} seeds)"
+        return text + (f"\nseed {group[0].seed}" if seeds_vary else "")
+
+    ax.set_xticks(range(len(groups)), [tick(g) for g in groups], fontsize=6)
+    ax.set_xlim(-0.6, max(len(groups), 2) - 0.4)
     ax.set_ylim(0, max(top, 1e-3) * 1.75)  # room for the notes
     ax.set_ylabel("relative L2 error: mean, and each\nsource's part (mean over its samples)", fontsize=8)
     ax.tick_params(labelsize=7)
@@ -181,7 +241,7 @@ def draw(ctx, runs):
     drawn = {r.method_label for r in everything}
     budgets = sorted({r.budget_label: r for r in everything}.values(), key=lambda r: r.budget_order())
     markers = {r.budget_label: MARKERS[k % len(MARKERS)] for k, r in enumerate(budgets)}
-    most = max(len(members) for _, members in groups)
+    most = max(len(statistics.repeats(members)) for _, members in groups)
     fig, axes = plt.subplots(len(groups), 2, figsize=(6.0 + max(5.0, 1.3 * most) + 2.0, 4.6 * len(groups)),
                              squeeze=False, gridspec_kw={"width_ratios": [6.0, max(5.0, 1.3 * most)]})
     used, sources = [], set()
@@ -215,4 +275,7 @@ def draw(ctx, runs):
                     "some samples can exceed the mean over all. Above the bars: the mean share of full's points "
                     "the run gave no force (missed) and of its points full gave none (ghost). One row per scene "
                     "and contact response; noise-floor runs (full, perturbed) are left out.",
-                    used)
+                    used, "each marker is the median of their p50s (the p95 whisker the median of their p95s, x "
+                          "the median of their p99 handling times) with the p50's bootstrap 95 % interval as a "
+                          "black error bar, and each group of bars the medians over the runs (the mean error's "
+                          "bootstrap 95 % interval in black; points and samples summed)")

@@ -1,10 +1,12 @@
 """Handling time per step, with and without a budget (the paper's figure 4).
 
 One panel per scene; one curve per method label. Every scene and method in the
-results appears, so a user's own scene or method shows up unasked.
+results appears, so a user's own scene or method shows up unasked. Where the run
+standing for a method has repeats (runs differing only by seed), every repeat's
+series is drawn, thin and in one colour: a per-step curve has no median to take.
 """
 from ..context import plt
-from .. import pairing
+from .. import pairing, statistics
 from ._common import by_scene, grid
 
 TITLE = "Handling time per step with and without a budget (the paper's figure 4)"
@@ -27,19 +29,41 @@ def representatives(runs):
     return sorted(chosen.values(), key=lambda r: (not pairing.is_reference(r), r.method_label))
 
 
+def curves(runs):
+    """[[runs]]: for each representative (one per method label), it and its repeats (same configuration,
+    other seeds) that have a handling_ms series, sorted by seed."""
+    out = []
+    for r in representatives(runs):
+        key = statistics.configuration(r)
+        group = [m for m in runs if statistics.configuration(m) == key and "handling_ms" in m.steps()]
+        if group:
+            out.append(sorted(group, key=statistics.seed_order))
+    return out
+
+
+REPEATS = ("each seed's series is drawn as its own thin curve in the colour of its configuration (no statistic "
+           "across seeds)")
+
+
 def draw(ctx, runs):
-    panels = [(scene, representatives(rs)) for scene, rs in by_scene(runs).items()]
-    panels = [(scene, [r for r in rs if "handling_ms" in r.steps()]) for scene, rs in panels]
-    panels = [(scene, rs) for scene, rs in panels if rs]
+    panels = [(scene, curves(rs)) for scene, rs in by_scene(runs).items()]
+    panels = [(scene, groups) for scene, groups in panels if groups]
     if not panels:
         return ctx.missing(TITLE, "no run has a steps.csv with handling_ms")
     rows, cols = grid(len(panels))
     fig, axes = plt.subplots(rows, cols, figsize=(6 * cols, 3.6 * rows), squeeze=False)
     sources = []
-    for ax, (scene, rs) in zip(axes.flat, panels):
-        for r in rs:
-            s = r.steps()
-            ax.plot(s["step"], s["handling_ms"], lw=0.6, label=r.label())
+    for ax, (scene, groups) in zip(axes.flat, panels):
+        for k, group in enumerate(groups):
+            if len(group) == 1:  # one run: drawn as it always was
+                s = group[0].steps()
+                ax.plot(s["step"], s["handling_ms"], lw=0.6, color=f"C{k % 10}", label=group[0].label())
+                continue
+            for j, r in enumerate(group):
+                s = r.steps()
+                ax.plot(s["step"], s["handling_ms"], lw=0.3, alpha=0.6, color=f"C{k % 10}",
+                        label=f"{r.label()} ({len(group)} seeds, one thin curve each)" if j == 0 else None)
+        rs = [r for group in groups for r in group]
         for value in sorted({r.budget_value for r in rs if r.budget_kind == "wall_ms" and r.budget_value}):
             ax.axhline(value, color="k", ls="--", lw=0.8, label=f"budget {value:.3g} ms")
         ax.set(title=scene, xlabel="step", ylabel="collision handling (ms)")
@@ -49,5 +73,5 @@ def draw(ctx, runs):
         ax.set_visible(False)
     return ctx.save(fig, FILE, TITLE,
                     "Collision handling time of every step (the steps.csv series, no statistic) in each scene, one "
-                    "run per method: under a wall-clock budget (dashed) where there is one, else without a budget.",
-                    sources)
+                    "configuration per method: under a wall-clock budget (dashed) where there is one, else without a "
+                    "budget.", sources, REPEATS)

@@ -5,6 +5,7 @@ measures (a stack: RMS vertical velocity over the settled half). One panel per
 scene and contact response (implicit, explicit), bars grouped by budget, full's
 value (same setup) marked across each bar.
 """
+from .. import statistics
 from ..context import plt
 from ..paper import STANDING_FRACTION
 from ._common import (bars_legend, bars_width, budget_bars, by_response, by_scene, log_limits, method_colours,
@@ -26,6 +27,14 @@ def collapsed(run):
 
 def note(run):
     return f"collapsed (top {run.metric('top_centre_height_m.final'):.2f} m)" if collapsed(run) else None
+
+
+def group_note(group):
+    """For repeats: how many of the runs that measured it collapsed, with its Wilson 95 % interval; None when
+    none did."""
+    measured = [collapsed(r) for r in group if collapsed(r) is not None]
+    fallen = sum(measured)
+    return f"collapsed {statistics.rate_text(fallen, len(measured))}" if fallen else None
 
 
 def panels(runs):
@@ -51,7 +60,7 @@ def draw(ctx, runs):
                 ax.set_visible(False)
                 continue
             title, rs = row[k]
-            drawn, shown = budget_bars(ax, ctx, rs, "jitter", colours, note)
+            drawn, shown = budget_bars(ax, ctx, rs, "jitter", colours, note, group_note)
             used, values = used + drawn, values + shown
             ax.set_title(title, fontsize=9)
             if k == 0:
@@ -66,5 +75,7 @@ def draw(ctx, runs):
                     "contact; a run recorded before the option is explicit), bars grouped by budget from the "
                     "largest to the smallest and coloured by method; the black mark across a bar is full's jitter "
                     "in the same setup. Hatched in red: the run is not ok; 'collapsed' where the top object's "
-                    f"centre ended below {100 * STANDING_FRACTION:g} % of its starting height (our threshold).",
+                    f"centre ended below {100 * STANDING_FRACTION:g} % of its starting height (our threshold); for "
+                    "repeats, how many of the runs did, with its Wilson 95 % interval. With repeats the bar is "
+                    "their median jitter and the black mark the median of their references'.",
                     used)

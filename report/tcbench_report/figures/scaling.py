@@ -2,11 +2,14 @@
 
 Drawn from the sweeps that declare "scaling". Only scenes run at several sizes
 (by their scene overrides) make a curve; one curve per scene, method and budget.
+A size with repeats (runs differing only by seed) is one point: the median of
+their p50 with its bootstrap 95 % interval, and the median of their p99.
 """
 from collections import defaultdict
 
 from matplotlib.ticker import NullFormatter
 
+from .. import statistics
 from ..context import plt
 
 TITLE = "Cost against scene size"
@@ -28,6 +31,18 @@ def curves(runs):
     return dict(sorted(out.items()))
 
 
+def points(runs):
+    """[(tets, p50, lo, hi, p99, n)] of a curve's runs, one per configuration, by size: one run's values, or
+    the medians of its repeats with the p50's bootstrap 95 % interval (lo, hi None for one run)."""
+    out = []
+    for group in statistics.repeats(runs):
+        p50, lo, hi, n = statistics.summarise(r.metric("handling_ms.p50") for r in group)
+        tails = [r.metric("handling_ms.p99") for r in group]
+        p99 = statistics.median(tails) if all(t is not None for t in tails) else None
+        out.append((statistics.median([r.dynamic_tets() for r in group]), p50, lo, hi, p99, n))
+    return sorted(out, key=lambda p: p[0])
+
+
 def draw(ctx, runs):
     runs = [r for r in runs if r.metric("handling_ms.p50") is not None and r.dynamic_tets() > 0]
     lines = curves(runs)
@@ -35,10 +50,13 @@ def draw(ctx, runs):
         return ctx.missing(TITLE, "no scene of the sweeps declaring this figure was run at two or more sizes")
     fig, ax = plt.subplots(figsize=(6, 4))
     for legend, rs in lines.items():
-        pts = sorted((r.dynamic_tets(), r.metric("handling_ms.p50"), r.metric("handling_ms.p99")) for r in rs)
-        ax.plot([p[0] for p in pts], [p[1] for p in pts], "o-", label=f"{legend} p50")
-        if all(p[2] is not None for p in pts):
-            ax.plot([p[0] for p in pts], [p[2] for p in pts], "x:", label=f"{legend} p99")
+        pts = points(rs)
+        [line] = ax.plot([p[0] for p in pts], [p[1] for p in pts], "o-", label=f"{legend} p50")
+        for tets, p50, lo, hi, _, _ in pts:
+            if lo is not None:
+                ax.errorbar(tets, p50, yerr=[[p50 - lo], [hi - p50]], color=line.get_color(), lw=0.8, capsize=2)
+        if all(p[4] is not None for p in pts):
+            ax.plot([p[0] for p in pts], [p[4] for p in pts], "x:", label=f"{legend} p99")
     ax.set(xscale="log", yscale="log", xlabel="tetrahedra (dynamic objects)",
            ylabel="handling time per step (ms)")
     # Tick the sizes that were run: a log axis over less than a decade labels its minor ticks on top of each other.
@@ -49,4 +67,6 @@ def draw(ctx, runs):
     scenes = ", ".join(sorted({r.scene for rs in lines.values() for r in rs}))
     return ctx.save(fig, FILE, f"{TITLE}: {scenes}",
                     "Collision handling time per step, its median (p50, solid) and p99 (dotted), against the "
-                    "number of tetrahedra of the dynamic objects.", [r for rs in lines.values() for r in rs])
+                    "number of tetrahedra of the dynamic objects.", [r for rs in lines.values() for r in rs],
+                    "each point is their median (the p50's bootstrap 95 % interval as a bar; the p99 the median of "
+                    "theirs)")

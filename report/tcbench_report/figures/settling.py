@@ -52,4 +52,5 @@ def draw(ctx, runs):
                     "vertex speed (chatter) and the mean kinetic energy, from the run summaries; one panel per "
                     "contact response (implicit or explicit penalty contact), bars grouped by budget from the "
                     "largest to the smallest and coloured by method; the black mark across a bar is full's value "
-                    "in the same setup. Log scales. Hatched in red: the run is not ok.", used)
+                    "in the same setup (with repeats, the median of their references'). Log scales. Hatched in red: "
+                    "the run is not ok (with repeats: how many of them are not).", used)

@@ -2,11 +2,12 @@
 forces outside it (summary.stages), stacked; with the stage the budget stopped the cycle in.
 
 One panel per scene, one bar per method label, budget (and contact response or scene overrides where a scene
-mixes them): the runs differing only in their RNG seed are averaged. A run without summary.stages (recorded
-before the stage meter) is left out.
+mixes them): the runs differing only in their RNG seed are averaged (the stages' means add up to the
+total's mean, their medians would not), and beside such a bar the median of the runs' totals with its
+bootstrap 95 % interval. A run without summary.stages (recorded before the stage meter) is left out.
 """
 from ..context import plt
-from .. import pairing
+from .. import pairing, statistics
 from ..loader import response_order
 from ._common import by_scene, method_order, width_for, wrapped
 
@@ -72,9 +73,21 @@ def bars(runs):
                                 for s in STAGES],
                 "unaccounted": mean(unaccounted) if unaccounted else None,
                 "steps": mean(number(r.record.get("steps")) for r in group),
+                "total": statistics.summarise([total(r) for r in group]),
             })
         out[scene] = scene_bars
     return out
+
+
+def total(run):
+    """The run's handling time per step its stages account for: the stages' ms_mean and the unaccounted
+    rest, summed (what its stacked bar reaches); None without stages."""
+    costs = stage_costs(run)
+    if not costs:
+        return None
+    parts = [number((costs.get(s) or {}).get("ms_mean")) for s in STAGES]
+    parts.append(number(run.summary.get("stages_ms_unaccounted_mean")))
+    return sum(p for p in parts if p is not None)
 
 
 def mean(values):
@@ -106,7 +119,7 @@ def draw(ctx, runs):
     most = max(len(b) for b in scenes.values())
     fig, axes = plt.subplots(len(scenes), 1, figsize=(width_for(most, 1.7, minimum=7.5), 4.6 * len(scenes)),
                              squeeze=False)
-    sources, marked, hatched = [], False, False
+    sources, marked, hatched, diamond = [], False, False, False
     for ax, (scene, scene_bars) in zip(axes[:, 0], scenes.items()):
         tops = []
         for x, bar in enumerate(scene_bars):
@@ -124,8 +137,17 @@ def draw(ctx, runs):
                        hatch="....", linewidth=0.5)
                 hatched = True
                 bottom += bar["unaccounted"]
+            text = f"{bottom:.3g} ms"
+            median, lo, hi, n = bar["total"]
+            if n > 1:  # repeats: the median of their totals, its bootstrap 95 % interval, left of the bar
+                text = f"mean {bottom:.3g} ms\n{statistics.estimate_text(median, lo, hi, n)} ms"
+                ax.plot(x - 0.38, median, marker="D", color="k", ms=3, ls="none")
+                if lo is not None:
+                    ax.errorbar(x - 0.38, median, yerr=[[median - lo], [hi - median]], color="k", lw=0.7, capsize=1.5)
+                    bottom = max(bottom, hi)
+                diamond = True
             tops.append(bottom)
-            ax.text(x, bottom, f"{bottom:.3g} ms\n{interruption_note(bar)}", ha="center", va="bottom", fontsize=6)
+            ax.text(x, bottom, f"{text}\n{interruption_note(bar)}", ha="center", va="bottom", fontsize=6)
             sources += bar["runs"]
         ax.set_xticks(range(len(scene_bars)), [b["label"] for b in scene_bars], fontsize=6.5)
         ax.set_xlim(-0.6, max(len(scene_bars), 2) - 0.4)
@@ -139,6 +161,9 @@ def draw(ctx, runs):
     if marked:
         handles.append(Line2D([], [], color="k", marker="<", ls="none", ms=5,
                               label="cycle interrupted in this stage\n(larger: more of the steps)"))
+    if diamond:
+        handles.append(Line2D([], [], color="k", marker="D", ms=3, lw=0.7,
+                              label="median of the seeds' totals,\nbootstrap 95 % interval"))
     axes[0, 0].legend(handles=handles, fontsize=6.5, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0)
     return ctx.save(fig, FILE, TITLE,
                     "Collision handling time per step split by stage (summary.stages.*.ms_mean: the mean ms per "
@@ -149,4 +174,6 @@ def draw(ctx, runs):
                     "the runs that differ only in their seed; runs recorded before the stage meter are left out. "
                     "Marks beside a bar and its note give the steps in which the budget stopped the cycle, per "
                     "run (summary.stages.*.interrupted_steps), and the stage that happened in most.",
-                    sources)
+                    sources, "each bar stacks the stages' means over the seeds (means add up to the total's mean), "
+                             "and the diamond left of it is the median of the seeds' totals with its bootstrap 95 % "
+                             "interval")
