@@ -1,6 +1,7 @@
 #include "experiments/check/thresholds.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 
@@ -34,7 +35,13 @@ std::vector<Threshold> load_thresholds(const std::filesystem::path& path) {
     };
     th.scene = need("scene");
     th.method = need("method");
-    th.metric = need("metric");
+    th.status = r.string("status");
+    if (th.status && *th.status != "ok" && *th.status != "unstable") r.fail("status", "is \"ok\" or \"unstable\"");
+    th.reason = r.string("reason");
+    if (th.reason && th.status != "unstable") r.fail("reason", "needs status = \"unstable\"");
+    th.set = r.string_list("set");
+    if (th.set) std::sort(th.set->begin(), th.set->end());
+    th.metric = th.status ? r.string("metric").value_or("") : need("metric");
     const auto is = [&](const std::string& key) { return th.metric == key || th.metric.rfind(key + ".", 0) == 0; };
     th.wall_metric = is("handling_ms") || is("overshoot_pct") || is("dynamics_ms");
     const bool cpu_metric = is("handling_cpu_ms") || is("overshoot_cpu_pct");  // the thread's own time: never
@@ -43,8 +50,10 @@ std::vector<Threshold> load_thresholds(const std::filesystem::path& path) {
     // spelling, relative ones (full/3) as written; anything else is a typo.
     if (const auto b = parse_sweep_budget(th.budget)) {
       th.budget = b->label;
+      // ms:0 is spent at the first poll on any machine: it decides nothing by the clock.
       th.wall_budget = !cpu_metric && (b->relative == SweepBudget::Relative::FullMs ||
-                                       (!b->is_relative() && b->absolute.kind == BudgetKind::WallMs));
+                                       (!b->is_relative() && b->absolute.kind == BudgetKind::WallMs &&
+                                        b->absolute.value > 0.0));
     } else {
       r.fail("budget", "'" + th.budget + "' is not none, ms:X, work:N, full/K or full-work/K");
     }
@@ -56,7 +65,10 @@ std::vector<Threshold> load_thresholds(const std::filesystem::path& path) {
     if (th.relative_to && th.relative_to->empty()) r.fail("relative_to", "names a method label, e.g. \"full\"");
     th.min = r.number("min");
     th.max = r.number("max");
-    if (!th.min && !th.max) throw InputError(path.string(), th.line, "threshold: give min, max or both");
+    if (th.metric.empty() && (th.min || th.max || th.relative_to))
+      throw InputError(path.string(), th.line, "threshold: min, max and relative_to bound a 'metric', which is missing");
+    if (!th.metric.empty() && !th.min && !th.max)
+      throw InputError(path.string(), th.line, "threshold: give min, max or both");
     if (th.min && th.max && *th.min > *th.max) r.fail("min", "is above max");
     r.finish();
     out.push_back(th);
@@ -70,7 +82,7 @@ namespace {
 struct RunKey {
   std::string name;  ///< path below DIR
   std::filesystem::path folder;
-  std::string scene, method_label, budget, response;
+  std::string scene, method_label, budget, response, status, reason;
   std::uint64_t seed = 0;
   std::int64_t steps = 0;
   nlohmann::json overrides;
@@ -89,10 +101,22 @@ RunKey key_of(std::string name, const nlohmann::json& run) {
   k.seed = run.value("seed", std::uint64_t{0});
   k.steps = run.value("steps_requested", run.value("steps", std::int64_t{0}));
   k.overrides = run.value("overrides", nlohmann::json::array());
+  k.status = run.value("status", "");
+  const nlohmann::json reason = run.value("unstable_reason", nlohmann::json());
+  k.reason = reason.is_string() ? reason.get<std::string>() : "";
   const nlohmann::json summary = run.value("summary", nlohmann::json::object());
   k.noisy = summary.is_object() && summary.value("timing", nlohmann::json::object()).value("verdict", "") == "noisy";
   k.record = &run;
   return k;
+}
+
+/// A run's --set overrides, sorted: a threshold's `set` matches them in any order.
+std::vector<std::string> sorted_strings(const nlohmann::json& list) {
+  std::vector<std::string> out;
+  for (const auto& e : list)
+    if (e.is_string()) out.push_back(e.get<std::string>());
+  std::sort(out.begin(), out.end());
+  return out;
 }
 
 /// The run a relative threshold divides by; null when there is none.
@@ -116,9 +140,23 @@ std::vector<CheckRow> check_thresholds(const std::vector<Threshold>& thresholds,
     for (const RunKey& run : runs) {
       if (run.scene != th.scene || run.method_label != th.method || run.budget != th.budget) continue;
       if ((th.seed && run.seed != *th.seed) || (th.response && run.response != *th.response)) continue;
+      if (th.set && sorted_strings(run.overrides) != *th.set) continue;
       matched = true;
+      CheckRow row;
+      row.threshold = &th;
+      row.run = run.name;
+      row.status = run.status;
+      if (th.status) {
+        const bool as_expected = run.status == *th.status && (!th.reason || run.reason.find(*th.reason) != std::string::npos);
+        if (!as_expected || th.metric.empty()) {
+          row.status_check = true;
+          row.verdict = as_expected ? "pass" : "FAIL";
+          rows.push_back(row);
+          continue;
+        }
+      }
       const SummaryLookup found = find_summary_metric(*run.record, th.metric);
-      CheckRow row{&th, run.name, "", found.value, ""};
+      row.value = found.value;
       bool inconclusive = (th.wall_metric || th.wall_budget) && run.noisy;
       if (th.relative_to) {
         const RunKey* ref = reference_of(run, *th.relative_to, runs);
@@ -137,7 +175,12 @@ std::vector<CheckRow> check_thresholds(const std::vector<Threshold>& thresholds,
                                                                : "FAIL";
       rows.push_back(row);
     }
-    if (!matched) rows.push_back({&th, "", "", std::nullopt, "missing"});
+    if (!matched) {
+      CheckRow row;
+      row.threshold = &th;
+      row.verdict = "missing";
+      rows.push_back(row);
+    }
   }
   return rows;
 }
@@ -148,12 +191,21 @@ std::string format_check_rows(const std::vector<CheckRow>& rows, const std::stri
   std::size_t failed = 0, inconclusive = 0;
   for (const CheckRow& r : rows) {
     const Threshold& t = *r.threshold;
-    std::string bound = t.min && t.max ? fmt::format("[{:.4g}, {:.4g}]", *t.min, *t.max)
-                        : t.min       ? fmt::format(">= {:.4g}", *t.min)
-                                      : fmt::format("<= {:.4g}", *t.max);
-    if (t.relative_to) bound += " x " + *t.relative_to;
-    out += fmt::format("{:<14} {:<16} {:<14} {:<22} {:>12} {:>22}  {}\n", t.scene, t.method, t.budget, t.metric,
-                       r.value ? fmt::format("{:.6g}", *r.value) : "-", bound, r.verdict);
+    std::string metric = t.metric, value, bound;
+    if (r.status_check) {  // the run's status (and reason) was what the row judged
+      metric = "status";
+      value = r.status.empty() ? "-" : r.status;
+      bound = "= " + *t.status + (t.reason ? " \"" + *t.reason + "\"" : "");
+    } else {
+      value = r.value ? fmt::format("{:.6g}", *r.value) : "-";
+      bound = t.min && t.max ? fmt::format("[{:.4g}, {:.4g}]", *t.min, *t.max)
+              : t.min       ? fmt::format(">= {:.4g}", *t.min)
+                            : fmt::format("<= {:.4g}", *t.max);
+      if (t.relative_to) bound += " x " + *t.relative_to;
+    }
+    out += fmt::format("{:<14} {:<16} {:<14} {:<22} {:>12} {:>22}  {}", t.scene, t.method, t.budget, metric, value,
+                       bound, r.verdict);
+    out += t.set ? fmt::format("  set [{}]\n", fmt::join(*t.set, ", ")) : "\n";
     inconclusive += r.verdict == "inconclusive";
     failed += r.verdict != "pass" && r.verdict != "inconclusive";
   }

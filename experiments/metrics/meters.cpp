@@ -3,6 +3,7 @@
 #include "experiments/metrics/contact_solve_meter.hpp"
 #include "experiments/metrics/divergence_meter.hpp"
 #include "experiments/metrics/dynamics_meter.hpp"
+#include "experiments/metrics/energy_meter.hpp"
 #include "experiments/metrics/force_reference_meter.hpp"
 #include "experiments/metrics/handling_meter.hpp"
 #include "experiments/metrics/jitter.hpp"
@@ -34,6 +35,7 @@ std::vector<std::unique_ptr<Meter>> make_meters(const RunSetup& run) {
   meters.push_back(std::make_unique<ForceReferenceMeter>(run));
   meters.push_back(std::make_unique<DivergenceMeter>(run));
   meters.push_back(std::make_unique<StabilityMeter>(run));
+  meters.push_back(std::make_unique<EnergyMeter>(run));  // after stability: a NaN is named as such
   meters.push_back(std::make_unique<JitterMeter>(run));
   meters.push_back(std::make_unique<TopCentreMeter>(run));
   meters.push_back(std::make_unique<ProbeForceMeter>());

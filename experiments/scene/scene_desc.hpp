@@ -27,6 +27,9 @@ struct SceneDesc {
   std::map<std::string, MethodSettings> methods;
   /// A vertex faster than this marks the run unstable (an explosion).
   double max_speed_m_per_s = 1.0e3;
+  /// A run whose energy rises by more than this share of what it started with
+  /// and was given is unstable (experiments/metrics/energy_meter.hpp).
+  double max_energy_gain = 0.5;
   /// [metrics] jitter: the scene's jitter measure ("vertical_velocity_rms"), empty for none.
   std::string jitter_measure;
   /// [perturb]: initial conditions drawn from the run's seed (sim/world/perturbation.hpp).

@@ -223,6 +223,7 @@ SceneDesc parse_scene(const std::string& text, const std::filesystem::path& path
     scene.steps = r.integer("steps", 0, std::int64_t(1) << 40).value_or(scene.steps);
     scene.world.gravity_m_per_s2 = r.vec3("gravity").value_or(scene.world.gravity_m_per_s2);
     scene.max_speed_m_per_s = r.positive("max_speed", scene.max_speed_m_per_s);
+    scene.max_energy_gain = r.positive("max_energy_gain", scene.max_energy_gain);
     r.finish();
   }
   if (const toml::table* g = top.table("ground")) {

@@ -13,6 +13,7 @@ World clone_world(const World& world) {
   copy.step_index = world.step_index;
   copy.contact_links = world.contact_links;
   copy.last_contact_solve = world.last_contact_solve;
+  copy.driven_work_j = world.driven_work_j;
   copy.bodies.reserve(world.bodies.size());
   for (const Body& b : world.bodies) {
     Body c;
@@ -72,6 +73,7 @@ void World::step(double dt_s) {
     const Vec3 at = body.trajectory->at(time_s + dt_s);
     for (std::size_t i = 0; i < body.x_m.size(); ++i) {
       const Vec3 next = body.shape_m[i] + at;
+      driven_work_j -= body.applied_contact_force_n[i].dot(next - body.x_m[i]);
       body.v_m_per_s[i] = (next - body.x_m[i]) / dt_s;
       body.x_m[i] = next;
     }

@@ -14,6 +14,12 @@
 /// Contact forces and links are cleared at the end of every step; the force
 /// that contacts actually applied in it (explicit forces plus the links'
 /// solved forces) stays in Body::applied_contact_force_n. Units: SI.
+///
+/// Energy bookkeeping: total_energy_j() of the dynamic bodies (kinetic +
+/// elastic + gravitational) changes only by the work of driven bodies
+/// (driven_work_j) and by what the integrator, the contacts and the ground
+/// projection dissipate or inject; experiments/metrics/energy_meter.hpp
+/// judges the rest.
 
 #include <cstdint>
 #include <memory>
@@ -67,12 +73,22 @@ class World {
   std::vector<std::string> build_warnings;
   /// What the implicit contact solves of the last step did.
   ContactSolveStats last_contact_solve;
+  /// Work the driven bodies did on the dynamic ones through their contacts
+  /// since the world was built (J): per step, -f . dx summed over the driven
+  /// vertices, f the contact force the step applied to a driven vertex and dx
+  /// its travel over the step. The only work done from outside: a static
+  /// passive body or the ground does none (it does not move where it
+  /// touches; it can only take energy away).
+  double driven_work_j = 0.0;
 
   void step(double dt_s);
 
   double kinetic_energy_j() const;          ///< of the dynamic bodies
   double elastic_energy_j() const;          ///< of the dynamic bodies
   double gravity_potential_j() const;       ///< -m g . x over dynamic bodies
+  /// kinetic + elastic + gravitational energy of the dynamic bodies (the
+  /// elastic part costs a rotation extraction per tet).
+  double total_energy_j() const { return kinetic_energy_j() + elastic_energy_j() + gravity_potential_j(); }
   /// Largest vertex speed of the dynamic bodies; NaN if any state is not finite.
   double max_speed_m_per_s() const;
   std::size_t vertex_count() const;

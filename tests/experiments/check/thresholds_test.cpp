@@ -4,6 +4,8 @@
 
 #include <unistd.h>
 
+#include <list>
+
 #include <nlohmann/json.hpp>
 
 #include "experiments/cli/cli.hpp"
@@ -292,4 +294,66 @@ TEST_CASE("check rejects malformed thresholds files with exit 2, naming file and
     }
     CHECK(cli({"check", path.string(), "."}) == 2);
   }
+}
+
+TEST_CASE("check: a threshold may state a run's status and reason, and pick runs by their --set overrides",
+          "[check]") {
+  const fs::path dir = fs::temp_directory_path() / ("tcbench_check_status_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  const auto run = [&](const std::string& name, const std::vector<std::string>& sets, const std::string& status,
+                       const std::string& reason, double gain) {
+    nlohmann::json j;
+    j["scene"] = "two_blocks";
+    j["method"] = j["method_label"] = "full";
+    j["budget"] = {{"kind", "none"}, {"value", nullptr}, {"label", "none"}};
+    j["seed"] = 0;
+    j["overrides"] = sets;
+    j["status"] = status;
+    j["unstable_reason"] = reason.empty() ? nlohmann::json() : nlohmann::json(reason);
+    j["summary"] = {{"motion_energy_gain", gain}};
+    write_run(dir / "runs" / name, j);
+  };
+  run("plain", {}, "ok", "", 0.0);
+  run("soft", {"b=2", "a=1"}, "unstable", "energy rose by 13 J at step 148", 4.4);
+  std::list<std::vector<Threshold>> kept;  // rows point into their thresholds
+  const auto check = [&](const std::string& text) {
+    kept.push_back(load_thresholds(thresholds(text)));
+    return check_thresholds(kept.back(), dir);
+  };
+  const std::string head = "[[threshold]]\nscene = \"two_blocks\"\nmethod = \"full\"\n";
+
+  // Overrides match in any order; [] is the run without any.
+  auto rows = check(head + "set = [\"a=1\", \"b=2\"]\nstatus = \"unstable\"\nreason = \"energy rose\"\n");
+  REQUIRE(rows.size() == 1);
+  CHECK(rows[0].run == "runs/soft");
+  CHECK(rows[0].verdict == "pass");
+  CHECK(rows[0].status_check);
+  rows = check(head + "set = []\nstatus = \"ok\"\nmetric = \"motion_energy_gain\"\nmax = 0.5\n");
+  REQUIRE(rows.size() == 1);
+  CHECK(rows[0].run == "runs/plain");
+  CHECK(rows[0].verdict == "pass");
+  CHECK_FALSE(rows[0].status_check);  // the status held; the metric decided
+
+  // The wrong status, or the right status for another reason, fails; so does
+  // a metric out of bounds once the status holds.
+  CHECK(check(head + "set = [\"a=1\", \"b=2\"]\nstatus = \"ok\"\nmetric = \"motion_energy_gain\"\nmax = 0.5\n")[0]
+            .verdict == "FAIL");
+  CHECK(check(head + "set = [\"a=1\", \"b=2\"]\nstatus = \"unstable\"\nreason = \"max_speed\"\n")[0].verdict == "FAIL");
+  CHECK(check(head + "set = []\nstatus = \"ok\"\nmetric = \"motion_energy_gain\"\nmax = -1\n")[0].verdict == "FAIL");
+  // A set no run has is missing, not passed.
+  CHECK(check(head + "set = [\"c=3\"]\nstatus = \"ok\"\n")[0].verdict == "missing");
+  // Without set, every run of the scene and method must hold it.
+  rows = check(head + "status = \"ok\"\n");
+  REQUIRE(rows.size() == 2);
+  CHECK(rows[0].verdict != rows[1].verdict);
+  const std::string printed = format_check_rows(rows, "t.toml");
+  CHECK(printed.find("status") != std::string::npos);
+  CHECK(printed.find("unstable") != std::string::npos);
+
+  // Malformed: an unknown status, a reason without status "unstable", bounds without a metric.
+  CHECK_THROWS_AS(check(head + "status = \"exploded\"\n"), InputError);
+  CHECK_THROWS_AS(check(head + "status = \"ok\"\nreason = \"x\"\n"), InputError);
+  CHECK_THROWS_AS(check(head + "status = \"ok\"\nmax = 1\n"), InputError);
+  CHECK_THROWS_AS(check(head + "metric = \"motion_energy_gain\"\n"), InputError);  // no bound
+  fs::remove_all(dir);
 }
