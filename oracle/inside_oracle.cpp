@@ -1,4 +1,5 @@
 #include "oracle/inside_oracle.hpp"
+#include "oracle/self_depth.hpp"
 #include "oracle/surface_mesh.hpp"
 #include "oracle/tet_inside.hpp"
 #include "oracle/tunneling.hpp"
@@ -150,16 +151,19 @@ OracleFrame compute_inside_oracle(const World& world) {
     }
     if (B.self_collision && !B.passive) {
       const std::vector<TetSide> sides = classify_self_points(B);
-      bool any = false;
+      const SelfDepths self = self_collision_depths(B, sides);
       for (std::size_t v = 0; v < sides.size(); ++v) {
-        if (sides[v] == TetSide::Inside) {
-          mark(b, v, b, [] { return std::numeric_limits<double>::quiet_NaN(); });
-          any = true;
-        } else if (sides[v] == TetSide::Boundary) {
+        if (sides[v] == TetSide::Inside)
+          mark(b, v, b, [&] { return self.depth_m[v]; });
+        else if (sides[v] == TetSide::Boundary)
           on_boundary[b][v] = 1;
-        }
       }
-      if (any) frame.unmeasured.push_back("true depth of self-collision points of '" + B.name + "' (not defined)");
+      if (self.shallow > 0)
+        frame.unmeasured.push_back(
+            part_count(*B.mesh) < 2
+                ? "true depth of self-collision points of '" + B.name + "' (the body has no parts)"
+                : "true depth of self-collision points of '" + B.name +
+                      "' inside their own or a neighbouring part only (not defined)");
     }
   }
   for (std::size_t a = 0; a < n; ++a)

@@ -18,14 +18,12 @@
 /// for a well-formed body, tested), and its depths are distances to its
 /// boundary triangles. Self-collision (bodies with self_collision, not
 /// passive): a vertex inside its own body's tets not incident to it
-/// (tet_inside.hpp); such points have no true depth (NaN, left out of depth
-/// errors and max_depth) and this is said once in `unmeasured`. Why none: the
-/// point lies on its own body's surface, so its distance to that surface is
-/// 0; a depth must leave out the point's own neighbourhood, and every cut we
-/// could draw (k rings of triangles, a rest-state radius r) is an arbitrary
-/// constant that, for penetrations deeper than the cut, measures the
-/// neighbourhood instead of the fold the point entered. Recall and precision
-/// of self-collision points are exact.
+/// (tet_inside.hpp). Its true depth is defined by the body's parts
+/// (self_depth.hpp: distance to the surface of the parts outside the point's
+/// own neighbourhood); a self-collision point inside its own or a
+/// neighbouring part only, or of a body without parts, has none (NaN, left
+/// out of depth errors and max_depth), and `unmeasured` says so. Recall and
+/// precision of self-collision points are exact either way.
 /// Self-intersection of a surface is not checked (CGAL's check costs more
 /// than the query).
 /// Units: metres.
@@ -39,7 +37,7 @@ namespace tcb {
 
 struct OraclePoint {
   std::int32_t object = -1, vertex = -1, other = -1;
-  double depth_m = 0.0;  ///< NaN for self-collision points (no true depth defined)
+  double depth_m = 0.0;  ///< NaN for self-collision points without a true depth (self_depth.hpp)
 };
 
 struct OracleFrame {

@@ -30,7 +30,12 @@ struct Touch {
   bool strictly_inside = false, touches = false, on_boundary_face = false;
 };
 
-std::vector<TetSide> classify(const Body& body, const std::vector<Vec3>& points_m, bool self) {
+// `self`: the points are the body's vertices, and a tet incident to the
+// queried vertex, or one `counts` rejects, is left out.
+using TetFilter = std::function<bool(std::int32_t, std::int32_t)>;
+
+std::vector<TetSide> classify(const Body& body, const std::vector<Vec3>& points_m, bool self,
+                              const TetFilter& counts = nullptr) {
   const TetMesh& mesh = *body.mesh;
   const std::vector<std::uint8_t> masks = boundary_face_masks(mesh);
   std::vector<Box> point_boxes, tet_boxes;
@@ -52,6 +57,7 @@ std::vector<TetSide> classify(const Body& body, const std::vector<Vec3>& points_
     const std::int32_t i = pb.info(), t = tb.info();
     const Tet& tet = mesh.tets[t];
     if (self && std::find(tet.begin(), tet.end(), i) != tet.end()) return;  // incident to the queried vertex
+    if (counts && !counts(i, t)) return;
     const Point p = point_of(points_m[i]);
     const CGAL::Orientation o = tet_orientation[t];
     bool zero[4];
@@ -89,5 +95,9 @@ std::vector<TetSide> classify_points_in_tets(const Body& body, const std::vector
 }
 
 std::vector<TetSide> classify_self_points(const Body& body) { return classify(body, body.x_m, true); }
+
+std::vector<TetSide> classify_self_points_among(const Body& body, const TetFilter& counts) {
+  return classify(body, body.x_m, true, counts);
+}
 
 }  // namespace tcb

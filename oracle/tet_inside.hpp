@@ -22,6 +22,7 @@
 /// undeformed mesh no vertex is inside its own body. Units: metres.
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "sim/world/world.hpp"
@@ -35,5 +36,11 @@ std::vector<TetSide> classify_points_in_tets(const Body& body, const std::vector
 
 /// For every vertex of `body`: its side of the body's own tets not incident to it.
 std::vector<TetSide> classify_self_points(const Body& body);
+
+/// For every vertex v of `body`: its side of the body's own tets t not
+/// incident to v for which counts(v, t) holds (the same rule, the other tets
+/// left out; boundary triangles stay the body's).
+std::vector<TetSide> classify_self_points_among(const Body& body,
+                                                const std::function<bool(std::int32_t, std::int32_t)>& counts);
 
 }  // namespace tcb

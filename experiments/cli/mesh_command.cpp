@@ -51,6 +51,7 @@ class MeshCommand final : public Command {
       j["folded_faces"] = s.folded_faces;
       j["isolated_vertices"] = s.isolated_vertices;
       j["surface_euler_characteristic"] = s.surface_euler_characteristic;
+      j["parts"] = s.parts;
       std::cout << j.dump() << '\n';
       return 0;
     }
@@ -67,11 +68,12 @@ class MeshCommand final : public Command {
         "inverted tets        {}  (given with negative orientation, repaired)\n"
         "degenerate tets      {}  (exactly flat, inert)\n"
         "folded faces         {}  (interior faces with both tets on one side)\n"
-        "isolated vertices    {}\n",
+        "isolated vertices    {}\n"
+        "parts                {}  (element references, box parts=; 1: none)\n",
         m_input, s.vertices, s.tets, s.edges, s.surface_triangles, s.surface_euler_characteristic, s.volume_m3,
         s.bbox_min.x(), s.bbox_min.y(), s.bbox_min.z(), s.bbox_max.x(), s.bbox_max.y(), s.bbox_max.z(),
         s.average_edge_m, s.worst_quality, s.mean_quality, s.inverted_tets, s.degenerate_tets, s.folded_faces,
-        s.isolated_vertices);
+        s.isolated_vertices, s.parts);
     return 0;
   }
 

@@ -9,9 +9,16 @@ namespace tcb {
 OracleComparison compare_with_oracle(const std::vector<Contact>& method, const OracleFrame& oracle) {
   using Key = std::pair<std::int32_t, std::int32_t>;
   std::map<Key, double> truth;
-  for (const OraclePoint& p : oracle.inside) truth[{p.object, p.vertex}] = p.depth_m;
-  const std::set<Key> boundary(oracle.boundary.begin(), oracle.boundary.end());
+  std::set<Key> self;
   OracleComparison r;
+  for (const OraclePoint& p : oracle.inside) {
+    truth[{p.object, p.vertex}] = p.depth_m;
+    if (p.object != p.other) continue;
+    self.insert({p.object, p.vertex});
+    ++r.self_points;
+    if (std::isfinite(p.depth_m)) ++r.self_points_with_depth;
+  }
+  const std::set<Key> boundary(oracle.boundary.begin(), oracle.boundary.end());
   r.oracle_points = static_cast<std::int64_t>(truth.size());
   r.max_depth_m = oracle.max_depth_m;
   std::size_t hits = 0, counted = 0;
@@ -24,7 +31,9 @@ OracleComparison compare_with_oracle(const std::vector<Contact>& method, const O
     }
     ++hits;
     ++counted;
-    if (c.depth_source != DepthSource::None && std::isfinite(it->second)) r.depth_errors.push_back(std::abs(c.depth_m - it->second));
+    if (c.depth_source == DepthSource::None || !std::isfinite(it->second)) continue;
+    r.depth_errors.push_back(std::abs(c.depth_m - it->second));
+    if (self.count(key)) r.self_depth_errors.push_back(r.depth_errors.back());
   }
   if (!truth.empty()) r.recall = static_cast<double>(hits) / static_cast<double>(truth.size());
   if (counted > 0) r.precision = static_cast<double>(hits) / static_cast<double>(counted);

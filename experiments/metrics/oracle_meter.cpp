@@ -50,6 +50,9 @@ void OracleMeter::before_dynamics(StepContext& ctx) {
     if (cmp.recall) m_recalls.push_back(*cmp.recall);
     if (cmp.precision) m_precisions.push_back(*cmp.precision);
     m_depth_errors.insert(m_depth_errors.end(), cmp.depth_errors.begin(), cmp.depth_errors.end());
+    m_self_depth_errors.insert(m_self_depth_errors.end(), cmp.self_depth_errors.begin(), cmp.self_depth_errors.end());
+    m_self_points += cmp.self_points;
+    m_self_points_with_depth += cmp.self_points_with_depth;
     m_max_depth = std::max(m_max_depth, cmp.max_depth_m);
     m_unmeasured.insert(m_frame.unmeasured.begin(), m_frame.unmeasured.end());
     ++m_oracle_steps;
@@ -89,6 +92,16 @@ void OracleMeter::summarize(Json& summary) const {
     const Distribution e = tcb::summarize(m_depth_errors);
     summary["depth_err"] = {{"mean", e.mean}, {"rms", e.rms}, {"max", e.max}};
   }
+  // Self-collision points: their depth error alone, and the share of them
+  // the body's parts give a true depth (oracle/self_depth.hpp).
+  if (m_self_depth_errors.empty()) {
+    summary["self_depth_err"] = nullptr;
+  } else {
+    const Distribution e = tcb::summarize(m_self_depth_errors);
+    summary["self_depth_err"] = {{"mean", e.mean}, {"rms", e.rms}, {"max", e.max}, {"count", e.count}};
+  }
+  summary["self_points"] = m_self_points;
+  summary["self_points_with_depth"] = m_self_points_with_depth;
   summary["max_depth"] = m_oracle_steps > 0 ? Json(m_max_depth) : Json(nullptr);
   summary["oracle_steps"] = m_oracle_steps;
   summary["oracle_ms"] = distribution_json(m_oracle_ms);

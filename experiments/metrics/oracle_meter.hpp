@@ -38,7 +38,8 @@ class OracleMeter final : public Meter {
   std::unique_ptr<SurfaceTrianglePairs> m_triangle_pairs;
   OracleFrame m_frame;      // this step's, handed on through StepContext
   OverlapFrame m_overlap_frame;
-  std::vector<double> m_recalls, m_precisions, m_depth_errors, m_oracle_ms;
+  std::vector<double> m_recalls, m_precisions, m_depth_errors, m_self_depth_errors, m_oracle_ms;
+  std::int64_t m_self_points = 0, m_self_points_with_depth = 0;
   double m_max_depth = 0.0;
   std::optional<double> m_overlap_max;
   std::int64_t m_oracle_steps = 0, m_overlap_steps = 0, m_overlap_invalid_steps = 0;

@@ -48,6 +48,7 @@ def fmt(value):
 
 RUN_COLUMNS = (("handling p50 (ms)", "handling_ms.p50"), ("handling p99 (ms)", "handling_ms.p99"),
                ("recall mean", "recall_mean"), ("recall min", "recall_min"), ("max depth (m)", "max_depth"),
+               ("depth error mean (m)", "depth_err.mean"), ("self-collision depth error mean (m)", "self_depth_err.mean"),
                ("jitter RMS (m/s)", "jitter"), ("settled max speed p50 (m/s)", "settled_max_speed_median"),
                ("settled kinetic energy mean (J)", "settled_kinetic_energy.mean"),
                ("probe force change RMS (N/step)", "probe_force_change_rms"), ("tunnelling", "tunneling"))

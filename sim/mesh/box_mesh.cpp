@@ -37,8 +37,11 @@ std::vector<double> parse_triple(const std::string& text, const std::string& wha
 
 }  // namespace
 
-TetMesh make_box_mesh(const Vec3& size_m, int nx, int ny, int nz) {
+TetMesh make_box_mesh(const Vec3& size_m, int nx, int ny, int nz, const std::array<int, 3>& parts) {
   if (nx < 1 || ny < 1 || nz < 1) throw std::invalid_argument("box cells must be at least 1 in each direction");
+  if (parts[0] < 1 || parts[0] > nx || parts[1] < 1 || parts[1] > ny || parts[2] < 1 || parts[2] > nz)
+    throw std::invalid_argument(fmt::format("box parts={}x{}x{} must be at least 1 and at most the cells {}x{}x{}",
+                                            parts[0], parts[1], parts[2], nx, ny, nz));
   if (!(size_m.minCoeff() > 0.0) || !size_m.allFinite())
     throw std::invalid_argument("box size must be positive and finite");
   const Vec3 hi = size_m / 2.0, lo = -hi;
@@ -56,10 +59,16 @@ TetMesh make_box_mesh(const Vec3& size_m, int nx, int ny, int nz) {
   static constexpr int kOrders[6][3] = {{0, 1, 2}, {1, 2, 0}, {2, 0, 1}, {0, 2, 1}, {2, 1, 0}, {1, 0, 2}};
   std::vector<Tet> tets;
   tets.reserve(static_cast<std::size_t>(nx) * ny * nz * 6);
+  const bool with_parts = parts[0] * parts[1] * parts[2] > 1;
+  std::vector<std::int32_t> tet_part;
+  const auto block = [](int i, int p, int n) { return static_cast<int>(static_cast<std::int64_t>(i) * p / n); };
   for (int k = 0; k < nz; ++k)
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i)
         for (int p = 0; p < 6; ++p) {
+          if (with_parts)
+            tet_part.push_back((block(k, parts[2], nz) * parts[1] + block(j, parts[1], ny)) * parts[0] +
+                               block(i, parts[0], nx));
           int c[3] = {i, j, k};
           Tet t{};
           t[0] = index(c[0], c[1], c[2]);
@@ -70,14 +79,16 @@ TetMesh make_box_mesh(const Vec3& size_m, int nx, int ny, int nz) {
           if (p >= 3) std::swap(t[2], t[3]);
           tets.push_back(t);
         }
-  return build_tet_mesh(std::move(x), std::move(tets));
+  TetMesh mesh = build_tet_mesh(std::move(x), std::move(tets));
+  mesh.tet_part = std::move(tet_part);
+  return mesh;
 }
 
 bool is_generator_source(const std::string& source) { return source.rfind("box:", 0) == 0; }
 
 TetMesh make_generated_mesh(const std::string& source) {
   if (!is_generator_source(source)) throw std::invalid_argument("unknown mesh generator '" + source + "'");
-  std::vector<double> size, cells;
+  std::vector<double> size, cells, parts;
   const std::string args = source.substr(4);
   std::size_t start = 0;
   while (start < args.size()) {
@@ -90,8 +101,10 @@ TetMesh make_generated_mesh(const std::string& source) {
       size = parse_triple(value, "box size");
     else if (key == "cells")
       cells = parse_triple(value, "box cells");
+    else if (key == "parts")
+      parts = parse_triple(value, "box parts");
     else
-      throw std::invalid_argument("unknown box parameter '" + key + "' (expected size=..., cells=...)");
+      throw std::invalid_argument("unknown box parameter '" + key + "' (expected size=..., cells=..., parts=...)");
     start = end + 1;
   }
   if (size.empty()) throw std::invalid_argument("box generator needs size=SXxSYxSZ");
@@ -105,8 +118,13 @@ TetMesh make_generated_mesh(const std::string& source) {
   if (tets > kMaxGeneratedTets)
     throw std::invalid_argument(fmt::format("box cells={}x{}x{} give {:.0f} tets; a generated box has at most {:.0f}",
                                             cells[0], cells[1], cells[2], tets, kMaxGeneratedTets));
+  if (parts.empty()) parts = {1, 1, 1};
+  for (std::size_t a = 0; a < 3; ++a)
+    if (parts[a] != std::floor(parts[a]) || parts[a] < 1 || parts[a] > cells[a])
+      throw std::invalid_argument("box parts must be whole numbers from 1 to the cells along each axis");
   return make_box_mesh(Vec3(size[0], size[1], size[2]), static_cast<int>(cells[0]), static_cast<int>(cells[1]),
-                       static_cast<int>(cells[2]));
+                       static_cast<int>(cells[2]),
+                       {static_cast<int>(parts[0]), static_cast<int>(parts[1]), static_cast<int>(parts[2])});
 }
 
 }  // namespace tcb

@@ -15,13 +15,17 @@
 
 namespace tcb {
 
-TetMesh make_box_mesh(const Vec3& size_m, int nx, int ny, int nz);
+/// `parts` (px, py, pz), each 1..n along its axis: the cells are grouped into
+/// px*py*pz blocks, cell i along x going to part floor(i*px/nx) (likewise y,
+/// z), part id (kz*py + ky)*px + kx; (1,1,1), the default, gives no parts.
+TetMesh make_box_mesh(const Vec3& size_m, int nx, int ny, int nz, const std::array<int, 3>& parts = {1, 1, 1});
 
 /// True when source names a generator rather than a file ("box:...").
 bool is_generator_source(const std::string& source);
 
 /// Builds a mesh from a generator string:
 ///   box:size=SXxSYxSZ,cells=NXxNYxNZ      e.g. "box:size=1x0.05x1,cells=10x1x10"
+///   box:size=...,cells=...,parts=PXxPYxPZ  the same, its cells grouped into parts
 /// Throws std::invalid_argument with a one-line reason when it is malformed.
 /// The most tets a generated box may have (the cells' product x 6).
 inline constexpr double kMaxGeneratedTets = 60.0e6;

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <functional>
 #include <limits>
 #include <string>
 
@@ -15,9 +17,10 @@ namespace {
 
 constexpr std::int64_t kMaxCount = std::numeric_limits<std::int32_t>::max();
 
+// One element's vertex indices; its reference goes to `part`.
 template <std::size_t N>
-std::array<std::int32_t, N> read_element(TokenReader& in, std::int64_t vertex_count,
-                                         const char* section) {
+std::array<std::int32_t, N> read_element(TokenReader& in, std::int64_t vertex_count, const char* section,
+                                         std::int32_t& part) {
   std::array<std::int32_t, N> e{};
   for (std::size_t k = 0; k < N; ++k) {
     const int line = in.peek_line();
@@ -28,7 +31,12 @@ std::array<std::int32_t, N> read_element(TokenReader& in, std::int64_t vertex_co
                         " is outside 1.." + std::to_string(vertex_count));
     e[k] = static_cast<std::int32_t>(index - 1);
   }
-  in.next_reference("an element reference");
+  const int line = in.peek_line();
+  const std::int64_t reference = in.next_reference("an element reference");
+  if (reference < std::numeric_limits<std::int32_t>::min() || reference > std::numeric_limits<std::int32_t>::max())
+    in.fail(line, std::string(section) + ": element reference " + std::to_string(reference) +
+                      " is outside the 32-bit range parts are kept in");
+  part = static_cast<std::int32_t>(reference);
   return e;
 }
 
@@ -43,6 +51,7 @@ TetMesh parse_medit(const std::string& file_name, std::string text, MeditReadSta
   std::vector<Vec3> vertices;
   std::vector<Tet> tets;
   std::vector<Hex> hexes;
+  std::vector<std::int32_t> tet_parts, hex_parts;  // element references
   bool have_vertices = false;
   int vertices_line = 0;
 
@@ -73,10 +82,14 @@ TetMesh parse_medit(const std::string& file_name, std::string text, MeditReadSta
       const std::int64_t n = read_count(in, keyword);
       const auto nv = static_cast<std::int64_t>(vertices.size());
       for (std::int64_t i = 0; i < n; ++i) {
-        if (keyword == "Tetrahedra")
-          tets.push_back(read_element<4>(in, nv, "Tetrahedra"));
-        else
-          hexes.push_back(read_element<8>(in, nv, "Hexahedra"));
+        std::int32_t part = 0;
+        if (keyword == "Tetrahedra") {
+          tets.push_back(read_element<4>(in, nv, "Tetrahedra", part));
+          tet_parts.push_back(part);
+        } else {
+          hexes.push_back(read_element<8>(in, nv, "Hexahedra", part));
+          hex_parts.push_back(part);
+        }
       }
     } else if (!looks_numeric(keyword)) {
       // A section we do not use: skip its numbers up to the next keyword.
@@ -91,9 +104,13 @@ TetMesh parse_medit(const std::string& file_name, std::string text, MeditReadSta
   if (!hexes.empty()) {
     const std::vector<Tet> split = split_hexahedra(hexes);
     tets.insert(tets.end(), split.begin(), split.end());
+    for (const std::int32_t part : hex_parts) tet_parts.insert(tet_parts.end(), split.size() / hexes.size(), part);
   }
   try {
-    return build_tet_mesh(std::move(vertices), std::move(tets));
+    TetMesh mesh = build_tet_mesh(std::move(vertices), std::move(tets));
+    if (std::adjacent_find(tet_parts.begin(), tet_parts.end(), std::not_equal_to<>()) != tet_parts.end())
+      mesh.tet_part = std::move(tet_parts);  // one reference throughout: no parts
+    return mesh;
   } catch (const MeshError& e) {
     throw InputError(file_name, 0, e.what());
   }
@@ -110,8 +127,11 @@ void write_medit(const std::filesystem::path& path, const TetMesh& mesh) {
   out << "Vertices\n" << mesh.positions_m.size() << "\n";
   for (const Vec3& p : mesh.positions_m) out << fmt::format("{} {} {} 0\n", p.x(), p.y(), p.z());
   out << "Tetrahedra\n" << mesh.tets.size() << "\n";
-  for (const Tet& t : mesh.tets)
-    out << fmt::format("{} {} {} {} 0\n", t[0] + 1, t[1] + 1, t[2] + 1, t[3] + 1);
+  for (std::size_t i = 0; i < mesh.tets.size(); ++i) {
+    const Tet& t = mesh.tets[i];
+    out << fmt::format("{} {} {} {} {}\n", t[0] + 1, t[1] + 1, t[2] + 1, t[3] + 1,
+                       mesh.tet_part.empty() ? 0 : mesh.tet_part[i]);
+  }
   out << "Triangles\n" << mesh.surface.size() << "\n";
   for (const Triangle& f : mesh.surface) out << fmt::format("{} {} {} 0\n", f[0] + 1, f[1] + 1, f[2] + 1);
   out << "End\n";

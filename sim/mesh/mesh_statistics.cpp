@@ -40,6 +40,7 @@ MeshStatistics mesh_statistics(const TetMesh& mesh) {
   s.folded_faces = mesh.folded_faces;
   s.isolated_vertices = mesh.isolated_vertices;
   s.surface_euler_characteristic = surface_euler_characteristic(mesh);
+  s.parts = part_count(mesh);
   return s;
 }
 

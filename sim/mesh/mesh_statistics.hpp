@@ -15,6 +15,7 @@ struct MeshStatistics {
   double mean_quality = 0.0;
   std::int64_t inverted_tets = 0, degenerate_tets = 0, folded_faces = 0, isolated_vertices = 0;
   std::int64_t surface_euler_characteristic = 0;
+  std::size_t parts = 1;                 ///< distinct parts (tet_part); 1 without
 };
 
 MeshStatistics mesh_statistics(const TetMesh& mesh);

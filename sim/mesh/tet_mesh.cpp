@@ -165,4 +165,10 @@ std::int64_t surface_euler_characteristic(const TetMesh& mesh) {
          static_cast<std::int64_t>(edges.size()) + static_cast<std::int64_t>(mesh.surface.size());
 }
 
+std::size_t part_count(const TetMesh& mesh) {
+  std::vector<std::int32_t> parts = mesh.tet_part;
+  std::sort(parts.begin(), parts.end());
+  return std::max<std::size_t>(static_cast<std::size_t>(std::unique(parts.begin(), parts.end()) - parts.begin()), 1);
+}
+
 }  // namespace tcb

@@ -59,6 +59,11 @@ struct Adjacency {
 struct TetMesh {
   std::vector<Vec3> positions_m;  ///< rest positions
   std::vector<Tet> tets;          ///< positively oriented (see contract)
+  /// Per tet, the part it belongs to (a MEDIT element reference, or the box
+  /// generator's parts=), or empty: no parts. Parts mean nothing to the
+  /// simulation or to the method; the oracle uses them to tell the fold a
+  /// vertex entered from the vertex's own neighbourhood (oracle/self_depth.hpp).
+  std::vector<std::int32_t> tet_part;
 
   std::vector<Edge> edges;                  ///< unique, each (lo, hi), sorted
   Adjacency vertex_neighbours;              ///< vertex -> vertices sharing an edge
@@ -95,6 +100,9 @@ double total_volume(const TetMesh& mesh, const std::vector<Vec3>& positions_m);
 /// Mean-ratio-like quality 6*sqrt(2)*V / l_rms^3: 1 for a regular tet, 0 for a
 /// flat one, negative for an inverted one.
 double tet_quality(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
+
+/// The number of distinct parts (TetMesh::tet_part); 1 for a mesh without parts.
+std::size_t part_count(const TetMesh& mesh);
 
 /// Euler characteristic V - E + F of the boundary surface (2 for each closed
 /// genus-0 component).

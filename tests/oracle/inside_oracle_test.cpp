@@ -68,7 +68,24 @@ TEST_CASE("comparison: on-boundary points are neither missed nor false", "[oracl
   CHECK(*c.recall == Approx(0.5));
   CHECK(*c.precision == Approx(0.5));
   CHECK(*c.depth_err_max == Approx(0.005));
+  CHECK(c.self_points == 0);
+  CHECK(c.self_depth_errors.empty());
   CHECK_FALSE(compare_with_oracle({}, OracleFrame{}).recall.has_value());
+  // Self-collision points (other == object): one with a true depth, one
+  // without; only the first has an error, kept apart as well.
+  oracle.inside.push_back({0, 4, 0, 0.03});
+  oracle.inside.push_back({0, 5, 0, std::nan("")});
+  method.resize(5);
+  method[3].object = 0, method[3].vertex = 4, method[3].other = 0, method[3].depth_source = DepthSource::Border,
+  method[3].depth_m = 0.01;
+  method[4].object = 0, method[4].vertex = 5, method[4].other = 0, method[4].depth_source = DepthSource::Border,
+  method[4].depth_m = 0.01;
+  const OracleComparison self = compare_with_oracle(method, oracle);
+  CHECK(self.self_points == 2);
+  CHECK(self.self_points_with_depth == 1);
+  REQUIRE(self.self_depth_errors.size() == 1);
+  CHECK(self.self_depth_errors[0] == Approx(0.02));
+  CHECK(self.depth_errors.size() == 2);
 }
 
 namespace {
@@ -77,6 +94,8 @@ struct OracleRun {
   int compared = 0;  ///< oracle frames where recall was defined
   double worst_depth_error_m = 0.0;
   std::int64_t method_points = 0, oracle_points = 0;
+  std::int64_t self_points = 0, self_with_depth = 0;
+  std::vector<double> self_depth_errors;
 };
 
 // Runs `full` for `steps` steps with the oracle every `every` steps; every
@@ -98,6 +117,9 @@ OracleRun full_against_oracle(const test::TestScene& scene, int steps, int every
       run.compared += c.recall.has_value();
       run.method_points += static_cast<std::int64_t>(full->contacts().size());
       run.oracle_points += c.oracle_points;
+      run.self_points += c.self_points;
+      run.self_with_depth += c.self_points_with_depth;
+      run.self_depth_errors.insert(run.self_depth_errors.end(), c.self_depth_errors.begin(), c.self_depth_errors.end());
     }
     world.step(scene.world.dt_s);
     REQUIRE(std::isfinite(world.max_speed_m_per_s()));
@@ -186,5 +208,14 @@ TEST_CASE("folding_bar: brute_force and full find exactly the oracle's self-coll
     const OracleRun run = full_against_oracle(scene, 1500, 25, method);
     CHECK(run.compared > 20);
     CHECK(run.oracle_points > 500);  // it really folds onto itself
+    // Its 15 parts give many of those points a true depth (self_depth.hpp),
+    // and the method gives them one too.
+    CHECK(run.self_with_depth > 0);
+    CHECK(run.self_depth_errors.size() > 0);
+    double sum = 0.0, worst = 0.0;
+    for (const double e : run.self_depth_errors) sum += e, worst = std::max(worst, e);
+    WARN(method << " on folding_bar: " << run.self_with_depth << " of " << run.self_points
+                << " self-collision points have a true depth; depth error mean "
+                << sum / static_cast<double>(run.self_depth_errors.size()) << " m, max " << worst << " m");
   }
 }

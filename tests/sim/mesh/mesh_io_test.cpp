@@ -66,6 +66,25 @@ TEST_CASE("MEDIT: write then read is lossless", "[io]") {
   fs::remove_all(dir);
 }
 
+TEST_CASE("MEDIT: element references are the tets' parts, and round-trip", "[io]") {
+  const fs::path dir = temp_dir("medit_parts");
+  const TetMesh mesh = make_generated_mesh("box:size=0.1x0.6x0.1,cells=1x6x1,parts=1x3x1");
+  REQUIRE(mesh.tet_part.size() == mesh.tet_count());
+  write_medit(dir / "parts.mesh", mesh);
+  CHECK(read_medit(dir / "parts.mesh").tet_part == mesh.tet_part);
+  // One reference throughout (the usual 0): no parts.
+  CHECK(parse_medit("tiny.mesh", kTetText).tet_part.empty());
+  // A hexahedron's six tets share its reference.
+  const std::string hexes =
+      "MeshVersionFormatted 1\nDimension 3\nVertices\n12\n"
+      "0 0 0 0\n1 0 0 0\n1 1 0 0\n0 1 0 0\n0 0 1 0\n1 0 1 0\n1 1 1 0\n0 1 1 0\n"
+      "0 0 2 0\n1 0 2 0\n1 1 2 0\n0 1 2 0\n"
+      "Hexahedra\n2\n1 2 3 4 5 6 7 8 7\n5 6 7 8 9 10 11 12 9\nEnd\n";
+  const TetMesh split = parse_medit("hexes.mesh", hexes);
+  CHECK(split.tet_part == std::vector<std::int32_t>{7, 7, 7, 7, 7, 7, 9, 9, 9, 9, 9, 9});
+  fs::remove_all(dir);
+}
+
 TEST_CASE("MEDIT: references written as reals with integral values are read (issue 15, defect 9)", "[io]") {
   const std::string text =
       "MeshVersionFormatted 1\nDimension 3\nVertices\n4\n0 0 0 0.0\n1 0 0 1.\n0 1 0 -2.0\n0 0 1 3e0\n"
@@ -100,6 +119,7 @@ TEST_CASE("MEDIT: malformed files name the file, the line and the problem", "[io
       {"non-integral element reference", head + "Tetrahedra\n1\n1 2 3 4 0.5\n", 11, "found '0.5'"},
       {"non-integral vertex reference", "Dimension 3\nVertices\n1\n0 0 0 2.25\n", 4, "an integral value"},
       {"text reference", head + "Tetrahedra\n1\n1 2 3 4 x\n", 11, "found 'x'"},
+      {"reference beyond 32 bits", head + "Tetrahedra\n1\n1 2 3 4 4294967296\n", 11, "outside the 32-bit range"},
       // A header's count larger than the file can hold reserves nothing of it (issue 15, defect 3).
       {"huge vertex count", "Dimension 3\nVertices\n2147483647\n0 0 0 0\n", 4, "file ends where a vertex x coordinate"},
       {"huge tet count", head + "Tetrahedra\n2147483647\n1 2 3 4 0\n", 11, "file ends"},

@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <numeric>
 #include <random>
@@ -31,6 +32,29 @@ TEST_CASE("box mesh: counts, volume, closed outward surface", "[mesh]") {
   CHECK(std::is_sorted(mesh.edges.begin(), mesh.edges.end()));
   CHECK(mesh.vertex_neighbours.items.size() == 2 * mesh.edges.size());
   CHECK(mesh.vertex_tets.items.size() == 4 * mesh.tet_count());
+}
+
+TEST_CASE("box mesh parts: cells grouped into blocks, each tet its block's id", "[mesh]") {
+  CHECK(make_generated_mesh("box:size=1x1x1,cells=2x3x2").tet_part.empty());
+  CHECK(part_count(make_generated_mesh("box:size=1x1x1,cells=2x3x2")) == 1);
+  const TetMesh mesh = make_generated_mesh("box:size=0.2x0.6x0.4,cells=2x6x4,parts=1x3x2");
+  REQUIRE(mesh.tet_part.size() == mesh.tet_count());
+  CHECK(part_count(mesh) == 6);
+  for (std::size_t t = 0; t < mesh.tet_count(); ++t) {
+    Vec3 centre = Vec3::Zero();
+    for (const std::int32_t v : mesh.tets[t]) centre += mesh.positions_m[v] / 4.0;
+    // Blocks of 2 cells along y (0.2 m each) and 2 along z (0.2 m each).
+    const int ky = static_cast<int>(std::floor((centre.y() + 0.3) / 0.2));
+    const int kz = static_cast<int>(std::floor((centre.z() + 0.2) / 0.2));
+    CHECK(mesh.tet_part[t] == kz * 3 + ky);
+  }
+  // Uneven: 5 cells into 2 parts go 3 + 2 (cell i to part floor(i*2/5)).
+  const TetMesh uneven = make_generated_mesh("box:size=1x0.5x1,cells=1x5x1,parts=1x2x1");
+  CHECK(std::count(uneven.tet_part.begin(), uneven.tet_part.end(), 0) == 18);
+  CHECK(std::count(uneven.tet_part.begin(), uneven.tet_part.end(), 1) == 12);
+  for (const char* bad : {"box:size=1x1x1,cells=2x2x2,parts=0x1x1", "box:size=1x1x1,cells=2x2x2,parts=1x3x1",
+                          "box:size=1x1x1,cells=2x2x2,parts=1x1.5x1", "box:size=1x1x1,cells=2x2x2,parts=2x2"})
+    CHECK_THROWS_WITH(make_generated_mesh(bad), Catch::Matchers::Contains("box parts"));
 }
 
 TEST_CASE("box mesh faces are exactly planar at +-size/2", "[mesh]") {
