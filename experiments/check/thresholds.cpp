@@ -13,8 +13,18 @@
 
 namespace tcb {
 
+// The thresholds of a parsed file (below).
+static std::vector<Threshold> thresholds_of(const toml::table& root, const std::filesystem::path& path);
+
 std::vector<Threshold> load_thresholds(const std::filesystem::path& path) {
-  const toml::table root = parse_toml_file(path);
+  return thresholds_of(parse_toml_file(path), path);
+}
+
+std::vector<Threshold> parse_thresholds(std::string_view text, const std::filesystem::path& path) {
+  return thresholds_of(parse_toml_text(text, path), path);
+}
+
+static std::vector<Threshold> thresholds_of(const toml::table& root, const std::filesystem::path& path) {
   const Origins origins{path.string(), {}};
   TableReader top(root, "thresholds file", origins);
   const toml::node* list = top.node("threshold");

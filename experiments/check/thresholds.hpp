@@ -76,6 +76,9 @@ struct CheckRow {
 /// Reads a thresholds file; InputError (file:line) for anything malformed.
 std::vector<Threshold> load_thresholds(const std::filesystem::path& path);
 
+/// The same from text; `path` names the file in errors.
+std::vector<Threshold> parse_thresholds(std::string_view text, const std::filesystem::path& path);
+
 /// One row per threshold and matching run (at least one row per threshold).
 std::vector<CheckRow> check_thresholds(const std::vector<Threshold>& thresholds, const std::filesystem::path& dir);
 

@@ -151,6 +151,15 @@ class TableReader {
 };
 
 
+/// Parses TOML text; `path` names it in errors; a syntax error is an InputError at its line.
+inline toml::table parse_toml_text(std::string_view text, const std::filesystem::path& path) {
+  try {
+    return toml::parse(text, path.string());
+  } catch (const toml::parse_error& e) {
+    throw InputError(path.string(), static_cast<int>(e.source().begin.line), std::string(e.description()));
+  }
+}
+
 /// Parses a whole TOML file; a syntax error is an InputError at its line.
 inline toml::table parse_toml_file(const std::filesystem::path& path) {
   std::error_code ec;

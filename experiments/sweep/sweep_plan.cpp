@@ -58,8 +58,16 @@ std::optional<SweepBudget> parse_sweep_budget(const std::string& label) {
   return b;
 }
 
-SweepPlan load_sweep_plan(const std::filesystem::path& path) {
-  const toml::table root = parse_toml_file(path);
+// The plan of a parsed sweep file (below).
+static SweepPlan sweep_plan_of(const toml::table& root, const std::filesystem::path& path);
+
+SweepPlan load_sweep_plan(const std::filesystem::path& path) { return sweep_plan_of(parse_toml_file(path), path); }
+
+SweepPlan parse_sweep_plan(std::string_view text, const std::filesystem::path& path) {
+  return sweep_plan_of(parse_toml_text(text, path), path);
+}
+
+static SweepPlan sweep_plan_of(const toml::table& root, const std::filesystem::path& path) {
   const Origins origins{path.string(), {}};
   TableReader top(root, "sweep file", origins);
   const toml::table* table = top.table("sweep");

@@ -101,6 +101,9 @@ struct SweepPlan {
 /// including unknown scenes and methods, before any run starts.
 SweepPlan load_sweep_plan(const std::filesystem::path& path);
 
+/// The same from text; `path` names the file in errors and anchors relative paths.
+SweepPlan parse_sweep_plan(std::string_view text, const std::filesystem::path& path);
+
 /// The plan `reproduce --quick` runs: the runs of the first quick_seeds
 /// seeds (all when the plan sets none).
 SweepPlan quick_plan(SweepPlan plan);
