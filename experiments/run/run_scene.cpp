@@ -41,7 +41,8 @@ Json world_json(const SceneDesc& scene, const World& world) {
 
 Json settings_json(const MethodSettings& settings) {
   Json out = Json::object();
-  for (const auto& [key, value] : settings.values()) std::visit([&](const auto& v) { out[key] = v; }, value);
+  // Not a structured binding: clang 14 (the fuzz preset) cannot capture one in a lambda.
+  for (const auto& entry : settings.values()) std::visit([&](const auto& v) { out[entry.first] = v; }, entry.second);
   return out;
 }
 

@@ -14,7 +14,11 @@
 ///   hold while the tets around the point are not inverted: once a tet folds
 ///   over its neighbour, their regions overlap and a point may lie in both.
 /// - The answer depends only on coordinates: never on hashing order, on which
-///   tet is tested first, or on how a tet's vertices are numbered.
+///   tet is tested first, or on how a tet's vertices are numbered. delta is
+///   fixed in the world frame, so touching decisions are unchanged by exact
+///   translations and power-of-two scalings, but a rotation of the objects
+///   may change them (a plate resting exactly on another may become "just
+///   inside" it): tests/method/detection/degenerate_poses_test.cpp.
 /// - Point-in-tet and edge-crosses-triangle use the same delta, so a point
 ///   found inside an object always has its border edges cross that object's
 ///   surface (a closed surface) an odd number of times: again for an object
