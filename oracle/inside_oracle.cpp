@@ -163,7 +163,7 @@ OracleFrame compute_inside_oracle(const World& world) {
             part_count(*B.mesh) < 2
                 ? "true depth of self-collision points of '" + B.name + "' (the body has no parts)"
                 : "true depth of self-collision points of '" + B.name +
-                      "' inside their own or a neighbouring part only (not defined)");
+                      "' that lie in no far part (self_depth.hpp: not defined)");
     }
   }
   for (std::size_t a = 0; a < n; ++a)

@@ -9,6 +9,8 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <stdexcept>
+#include <string>
 
 namespace tcb {
 namespace {
@@ -38,6 +40,9 @@ SelfDepths self_collision_depths(const Body& body, const std::vector<TetSide>& s
   for (std::size_t v = 0; v < n && v < self_sides.size(); ++v)
     if (self_sides[v] == TetSide::Inside) inside[v] = 1, ++count;
   if (count == 0) return r;
+  if (!mesh.tet_part.empty() && mesh.tet_part.size() != mesh.tet_count())
+    throw std::invalid_argument("self_collision_depths: tet_part has " + std::to_string(mesh.tet_part.size()) +
+                                " entries for " + std::to_string(mesh.tet_count()) + " tets");
   if (part_count(mesh) < 2) {
     r.shallow = count;
     return r;

@@ -19,9 +19,14 @@
 ///   relative), as a point inside another body is as deep as its distance to
 ///   that body's surface. Cut faces between parts are not surface and never
 ///   count;
-/// - every other self-collision point (inside tets of its own or a
-///   neighbouring part only) has no true depth: NaN. So has every vertex of a
-///   body with fewer than two parts.
+/// - every other self-collision point has no true depth: NaN. That is a point
+///   inside tets of its own or a neighbouring part only; one that only
+///   touches far tets on the body's surface; one whose far parts have no
+///   boundary triangle; and every vertex of a body with fewer than two parts.
+/// - Ties on a cut face: a point exactly on a face shared by a far tet and a
+///   tet of its neighbourhood counts as inside the far part (that face is not
+///   surface) and gets its distance to the far parts' surface, not 0.
+/// tet_part must be empty or have one entry per tet (std::invalid_argument).
 /// When each part is a connected component of its own, a self-collision depth
 /// is exactly the oracle's depth for the components as separate bodies
 /// (tested). Units: metres.

@@ -100,8 +100,8 @@ void OracleMeter::summarize(Json& summary) const {
     const Distribution e = tcb::summarize(m_self_depth_errors);
     summary["self_depth_err"] = {{"mean", e.mean}, {"rms", e.rms}, {"max", e.max}, {"count", e.count}};
   }
-  summary["self_points"] = m_self_points;
-  summary["self_points_with_depth"] = m_self_points_with_depth;
+  summary["self_points"] = m_oracle_steps > 0 ? Json(m_self_points) : Json(nullptr);
+  summary["self_points_with_depth"] = m_oracle_steps > 0 ? Json(m_self_points_with_depth) : Json(nullptr);
   summary["max_depth"] = m_oracle_steps > 0 ? Json(m_max_depth) : Json(nullptr);
   summary["oracle_steps"] = m_oracle_steps;
   summary["oracle_ms"] = distribution_json(m_oracle_ms);

@@ -379,10 +379,10 @@ TEST_CASE("stage times lie inside handling time, the step is handling plus dynam
   // wall time (on a loaded machine the scheduler takes the CPU at the thread
   // clock's system call, inside the handling interval but outside the stages:
   // measured 8 ms of 9 while a sweep ran). A per-step bound of 50 us failed in
-  // CI once (a 54 us gap at one step while two compilers shared the cores);
-  // a stage left untimed shows in the total, and its work units above are
-  // checked exactly on every step.
-  CHECK(stages_total_ms >= 0.9 * handling_cpu_total_ms - 0.05);
+  // CI once (a 54 us gap at one step while two compilers shared the cores),
+  // so the same 50 us a step is allowed over the run as a whole: one slow
+  // step borrows from the others, a stage left untimed on every step does not.
+  CHECK(stages_total_ms >= handling_cpu_total_ms - 0.05 * static_cast<double>(lines.size() - 1));
   const auto run = nlohmann::json::parse(read_file(dir / "run.json"));
   const auto& summary = run["summary"];
   REQUIRE(summary["stages"].is_object());

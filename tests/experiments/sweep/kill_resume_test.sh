@@ -37,9 +37,15 @@ verify() {
   # The same simulations: status, steps and final energy of each run.
   column() { head -1 "$1" | tr , '\n' | grep -nx "$2" | cut -d: -f1; }
   pick() {
-    local file=$1
-    cut -d, -f1,"$(column "$file" status)","$(column "$file" steps)","$(column "$file" energy.final_j)" "$file" | sort
+    local file=$1 cols=() name c
+    for name in status steps energy.final_j; do
+      c=$(column "$file" "$name") || true
+      [[ -n "$c" ]] || fail "$file has no column $name"
+      cols+=("$c")
+    done
+    cut -d, -f1,"${cols[0]}","${cols[1]}","${cols[2]}" "$file" | sort
   }
+  pick "$work/reference/summary.csv" >/dev/null  # fails loudly on a missing column
   diff <(pick "$work/reference/summary.csv") <(pick "$work/killed/summary.csv") || fail "a resumed run differs from the uninterrupted one"
 }
 
