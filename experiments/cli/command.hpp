@@ -27,5 +27,6 @@ std::unique_ptr<Command> make_sweep_command(CLI::App& parent);
 std::unique_ptr<Command> make_check_command(CLI::App& parent);
 std::unique_ptr<Command> make_compare_command(CLI::App& parent);
 std::unique_ptr<Command> make_report_command(CLI::App& parent);
+std::unique_ptr<Command> make_neural_command(CLI::App& parent);
 
 }  // namespace tcb::cli

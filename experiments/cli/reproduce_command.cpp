@@ -1,7 +1,7 @@
 // tcbench reproduce [--quick] [--out DIR]: the paper's experiment set, then
 // the report. The set is the sweep files in experiments/sweeps/paper/, run one
 // after the other with one job (wall-clock budgets need a quiet machine), each
-// into DIR/<sweep name>/; then `tcbench report DIR`; then, for full-length
+// into DIR/<sweep name>/; then the neural experiment into DIR/7_neural; then `tcbench report DIR`; then, for full-length
 // runs, `tcbench check experiments/thresholds/paper.toml DIR` (also written to
 // DIR/check.txt): the claims the project holds itself to at the paper's
 // lengths. --quick runs are too short for them and are not checked.
@@ -16,6 +16,7 @@
 #include "experiments/run/thread_clock.hpp"
 #include "experiments/cli/command.hpp"
 #include "experiments/cli/report_runner.hpp"
+#include "experiments/neural/neural_experiment.hpp"
 #include "experiments/run/provenance.hpp"
 #include "experiments/sweep/sweep_runner.hpp"
 #include "sim/io/atomic_file.hpp"
@@ -32,6 +33,7 @@ class ReproduceCommand final : public Command {
     app->footer(
         "Runs every sweep in experiments/sweeps/paper/ (about two hours on 2 cores, most of it the stack: both\n"
         "response modes and five jittered seeds; --quick: shorter runs, fewer seeds, about 20 min), then\n"
+        "the neural detector's experiment (`tcbench neural experiment`, into DIR/7_neural), then\n"
         "`tcbench report DIR` (DIR/report/index.html), then (not with --quick) checks\n"
         "experiments/thresholds/paper.toml against the runs (DIR/check.txt).\n"
         "Exit status: 0 all runs ok and all checks pass; 1 some run unstable or failed, or a check failed (the\n"
@@ -94,6 +96,20 @@ class ReproduceCommand final : public Command {
         std::cerr << fmt::format("  [{}/{}] {:<9} {} ({:.0f} s elapsed)\n", done, total, status, run.id, elapsed);
       };
       exit_code = std::max(exit_code, run_sweep(plan, m_options).exit_code());
+    }
+    // The neural detector of seed 002 is not a sweep of runs: its experiment
+    // writes its own tables, which the report finds beneath DIR.
+    if (!(m_options.resume && std::filesystem::exists(std::filesystem::path(m_out) / "7_neural" / "neural.json"))) {
+      NeuralExperimentSettings neural = neural_experiment_defaults(m_options.quick);
+      neural.out = std::filesystem::path(m_out) / "7_neural";
+      neural.jobs = 2;  // not a timing experiment: both cores
+      neural.command_line = argv;
+      neural.progress = [&](const std::string& line) {
+        const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        std::cerr << fmt::format("  neural: {} ({:.0f} s elapsed)\n", line, elapsed);
+      };
+      std::cerr << fmt::format("neural experiment (seed 002): {}\n", neural.out.string());
+      run_neural_experiment(neural);
     }
     const int report = run_report(m_out);
     if (!m_options.quick) {
