@@ -67,7 +67,8 @@ def draw(ctx, runs):
         meta = results.meta
         sizes = ", ".join(f"{p['preset']}: {p['vertices']} vertices, {p['tets']} tets, {p['test_codes']} test codes "
                           f"({p['test_colliding']} colliding), label {p['label_ms_per_code']:.2f} ms/code, detector "
-                          f"{p['detector_eval_us_median']:.1f} us/evaluation" for p in meta.get("presets", []))
+                          f"{p['detector_eval_us_median']:.1f} us/evaluation against {p.get('full_step_ms_median', math.nan):.2f} ms "
+                          f"for a step of the full method" for p in meta.get("presets", []))
         stem = FILE if number == 0 else f"{FILE}_{number}"
         title = f"{TITLE} ({os.path.relpath(results.directory, ctx.results.root)})"
         caption = (f"Accuracy and false-negative rate of the detector (colliding when its logit > 0) on held-out "
