@@ -88,10 +88,11 @@ void train_steps(Mlp<double>& net, Adam<double>& adam, const std::vector<Sample>
       b = &samples[std::min(samples.size() - 1, static_cast<std::size_t>(u * static_cast<double>(samples.size())))];
     }
     const Eigen::MatrixXd z = codes_of(batch);
-    const Vec r = net.forward_batch(z).row(0).transpose();
-    Vec dloss_dr;
-    batch_loss(r, batch, s, dloss_dr);
-    const Vec grad = net.parameter_gradient(z, dloss_dr.transpose());
+    const Vec grad = net.gradient_through(z, [&](const Eigen::MatrixXd& out) {
+      Vec dloss_dr;
+      batch_loss(out.row(0).transpose(), batch, s, dloss_dr);
+      return Eigen::MatrixXd(dloss_dr.transpose());
+    });
     adam.step(params, grad);
     net.set_parameters(params);
   }

@@ -141,12 +141,23 @@ class Mlp {
 
   /// dL/dtheta (flat order) for a batch z, given dL/d(output) (outputs x samples).
   Vec parameter_gradient(const Mat& z, const Mat& dloss_dout) const {
+    return gradient_through(z, [&](const Mat&) { return dloss_dout; });
+  }
+
+  /// One forward pass and one backward pass: `dloss(output)` (outputs x
+  /// samples) returns dL/d(output) from the batch's outputs; returns dL/dtheta.
+  /// Training calls this rather than forward_batch then parameter_gradient,
+  /// which would run the forward pass (and its tanh) twice.
+  template <class DLoss>
+  Vec gradient_through(const Mat& z, DLoss&& dloss) const {
     check_input(z.rows());
-    if (dloss_dout.rows() != output_size() || dloss_dout.cols() != z.cols())
-      throw std::invalid_argument("Mlp::parameter_gradient: dloss_dout has the wrong shape");
     std::vector<Mat> act(m_weights.size());
     act[0] = z;
     for (std::size_t l = 0; l + 1 < m_weights.size(); ++l) act[l + 1] = activate(Mat((m_weights[l] * act[l]).colwise() + m_biases[l]));
+    const Mat out = (m_weights.back() * act.back()).colwise() + m_biases.back();
+    const Mat dloss_dout = dloss(out);
+    if (dloss_dout.rows() != output_size() || dloss_dout.cols() != z.cols())
+      throw std::invalid_argument("Mlp::parameter_gradient: dloss_dout has the wrong shape");
     Vec grad(static_cast<Eigen::Index>(parameter_count()));
     Eigen::Index at = grad.size();
     Mat delta = dloss_dout;
