@@ -31,6 +31,14 @@ class NeuralCommand final : public Command {
     m_experiment->add_option("--preset", m_presets, "Latent families to run (repeatable; default: finger_small and finger_large, --quick: finger_small)");
     m_experiment->add_option("--seeds", m_seed_count, "Training seeds 1..N (default: 3, --quick 2)")
         ->check(CLI::Range(1, 100));
+    m_experiment->add_option("--rounds", m_rounds, "Learning rounds after the bootstrap (default 8, --quick 4)")
+        ->check(CLI::Range(0, 10000));
+    m_experiment->add_option("--labels-per-round", m_labels_per_round, "Labels each round adds (default 100, --quick 50)")
+        ->check(CLI::Range(1, 1000000));
+    m_experiment->add_option("--steps-per-round", m_steps_per_round, "Adam steps each round (default 500, --quick 200)")
+        ->check(CLI::Range(0, 100000000));
+    m_experiment->add_option("--test-codes", m_test_codes, "Held-out codes (default 2000, --quick 600)")
+        ->check(CLI::Range(1, 10000000));
     m_experiment->add_option("--jobs", m_jobs, "Worker threads (the results do not depend on it)")
         ->check(CLI::Range(1, 64))
         ->capture_default_str();
@@ -51,6 +59,10 @@ class NeuralCommand final : public Command {
       s.seeds.clear();
       for (int k = 1; k <= m_seed_count; ++k) s.seeds.push_back(static_cast<std::uint64_t>(k));
     }
+    if (m_rounds >= 0) s.learning.rounds = m_rounds;
+    if (m_labels_per_round > 0) s.learning.labels_per_round = m_labels_per_round;
+    if (m_steps_per_round >= 0) s.learning.steps_per_round = m_steps_per_round;
+    if (m_test_codes > 0) s.test_codes = m_test_codes;
     s.out = m_out;
     s.jobs = m_jobs;
     s.command_line = argv;
@@ -67,6 +79,7 @@ class NeuralCommand final : public Command {
   std::vector<std::string> m_presets;
   int m_seed_count = 0;
   int m_jobs = 2;
+  int m_rounds = -1, m_labels_per_round = 0, m_steps_per_round = -1, m_test_codes = 0;
 };
 
 }  // namespace
