@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "oracle/self_depth.hpp"
 #include "oracle/tet_inside.hpp"
@@ -12,7 +14,10 @@ SelfPenetration self_penetration(const Body& body) {
   const TetMesh& mesh = *body.mesh;
   SelfPenetration r;
   std::int32_t max_part = 0;
-  for (const std::int32_t p : mesh.tet_part) max_part = std::max(max_part, p);
+  for (const std::int32_t p : mesh.tet_part) {
+    if (p < 0) throw std::invalid_argument("self_penetration: negative part " + std::to_string(p));
+    max_part = std::max(max_part, p);
+  }
   r.part_pd_m.assign(static_cast<std::size_t>(max_part) + 1, 0.0);
   const SelfDepths depths = self_collision_depths(body, classify_self_points(body));
   r.deep = depths.deep;

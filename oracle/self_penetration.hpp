@@ -18,7 +18,8 @@
 /// - per part a, part_pd_m[a] is the largest depth among the deep vertices of
 ///   a tet of part a (a vertex on a cut between parts counts for each of its
 ///   parts); parts are indexed 0..max(tet_part); 0 when none of a's vertices
-///   is deep;
+///   is deep; a negative part is std::invalid_argument (part ids index the
+///   result: keep them small, as MEDIT references and box parts are);
 /// - a body with fewer than two parts never penetrates itself (no part can
 ///   be far from another).
 /// Cost: one exact self classification plus one distance tree per group of

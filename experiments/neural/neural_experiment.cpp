@@ -51,8 +51,9 @@ double mean(const std::vector<double>& v) {
   return n ? s / static_cast<double>(n) : std::nan("");
 }
 
-// Distance from z0 to the first collision-free code on the segment towards
-// the rest code, by bisection with exact labels (the direct, detector-free
+// Distance from z0 to a collision-free code on the segment towards the rest
+// code where the label changes (bisection with exact labels: a crossing, not
+// necessarily the first) (the direct, detector-free
 // answer a user could compute offline); NaN when the rest code collides.
 double reference_distance(FingerLabeller& labeller, const Eigen::VectorXd& z0, const Eigen::VectorXd& rest, int bisections) {
   if (labeller(rest).collides) return std::nan("");
@@ -304,6 +305,7 @@ void run_neural_experiment(const NeuralExperimentSettings& settings) {
     p["vertices"] = finger.mesh()->positions_m.size();
     p["tets"] = finger.mesh()->tet_count();
     p["latent_size"] = n;
+    p["layers"] = learning_settings.layers;
     p["test_codes"] = test_set.size();
     p["test_colliding"] = colliding;
     p["label_ms_per_code"] = 1e3 * test_label_seconds / std::max<double>(1.0, static_cast<double>(test_set.size()));
@@ -324,7 +326,7 @@ void run_neural_experiment(const NeuralExperimentSettings& settings) {
   meta["build"] = build_info();
   meta["machine"] = machine_info();
   meta["seeds"] = settings.seeds;
-  meta["layers"] = settings.learning.layers;
+  meta["hidden_layers"] = std::vector<int>(settings.learning.layers.begin() + 1, settings.learning.layers.end() - 1);
   meta["activation"] = settings.learning.activation == neural::Activation::Tanh ? "tanh" : "celu";
   meta["bootstrap_labels"] = settings.learning.bootstrap_labels;
   meta["bootstrap_steps"] = settings.learning.bootstrap_steps;

@@ -23,8 +23,9 @@
 /// fine-tuned on everything labelled so far.
 ///
 /// Reproducible: every random draw comes from counter_random (seed, stream,
-/// index), so the same seed gives bit-identical weights on any machine. The
-/// labeller is handed in: this file never sees the oracle.
+/// index), so the same seed gives bit-identical weights for one build (across
+/// machines as far as their tanh and exp agree, mlp.hpp). The labeller is
+/// handed in: this file never sees the oracle.
 
 #include <cstdint>
 #include <functional>

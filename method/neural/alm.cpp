@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace tcb::neural {
 namespace {
@@ -17,6 +18,8 @@ double lagrangian(const AlmState& s, const Eigen::VectorXd& z, double c, const E
 }  // namespace
 
 AlmState alm_start(const Eigen::VectorXd& z0, const AlmSettings& settings) {
+  if (!(settings.mu_initial > 0.0) || !(settings.mu_growth >= 1.0) || settings.max_outer < 1 || settings.max_inner < 1)
+    throw std::invalid_argument("alm_start: needs mu_initial > 0, mu_growth >= 1, max_outer and max_inner >= 1");
   AlmState s;
   s.z0 = z0;
   s.z = z0;
@@ -38,8 +41,8 @@ bool alm_resume(AlmState& s, const Constraint& constraint, const AlmSettings& se
         break;
       }
       case AlmPhase::Direction: {
-        const bool stationary =
-            s.stalled || s.gradient.norm() <= settings.gradient_tolerance * (1.0 + (s.z - s.z0).norm());
+        const bool small_gradient = s.gradient.norm() <= settings.gradient_tolerance * (1.0 + (s.z - s.z0).norm());
+        const bool stationary = s.stalled || small_gradient;
         const bool inner_done = stationary || s.inner >= settings.max_inner;
         if (!inner_done) {
           s.direction = -s.inverse_hessian * s.gradient;
@@ -53,7 +56,7 @@ bool alm_resume(AlmState& s, const Constraint& constraint, const AlmSettings& se
         }
         // The inner problem is solved: multiplier update, or stop.
         if (s.c <= settings.feasibility_tolerance && stationary) {
-          s.converged = true;
+          s.converged = small_gradient;  // a stalled line search stops, but is not called converged
           s.phase = AlmPhase::Done;
           break;
         }
@@ -63,7 +66,9 @@ bool alm_resume(AlmState& s, const Constraint& constraint, const AlmSettings& se
         s.inner = 0;
         s.stalled = false;
         s.inverse_hessian = Eigen::MatrixXd::Identity(n, n) * 0.5;
-        s.phase = s.outer >= settings.max_outer ? AlmPhase::Done : AlmPhase::Evaluate;
+        // c and its gradient at z are known: only L changes with lambda and mu.
+        s.value = lagrangian(s, s.z, s.c, s.c_gradient, s.gradient);
+        s.phase = s.outer >= settings.max_outer ? AlmPhase::Done : AlmPhase::Direction;
         break;
       }
       case AlmPhase::LineSearch: {

@@ -10,8 +10,9 @@
 /// minimised over z by BFGS with an Armijo backtracking line search; then
 /// lambda <- max(0, lambda + mu c(z)) and mu grows while c(z) is above the
 /// tolerance. It stops when c(z) <= feasibility tolerance and the inner
-/// minimisation has converged, or after max_outer updates (then the best it
-/// has is the code nearest to the boundary it reached: ALM's best effort).
+/// minimisation has converged (`converged`) or its line search stalled (not
+/// `converged`), or after max_outer updates; it returns its last iterate
+/// either way (ALM's best effort when no feasible code is found).
 ///
 /// Interruptible and resumable: the solver is a state machine whose unit of
 /// work is one evaluation of c and its gradient (one network forward and
@@ -57,7 +58,7 @@ struct AlmState {
   bool stalled = false;  ///< the line search found no decrease: the inner solve is over
   AlmPhase phase = AlmPhase::Evaluate;
   std::uint64_t evaluations = 0;
-  bool converged = false;  ///< stopped feasible with a converged inner solve
+  bool converged = false;  ///< stopped feasible with a converged inner solve (gradient test passed)
 };
 
 /// A solver at z0, not yet evaluated.

@@ -59,18 +59,18 @@ class NeuralClaims(unittest.TestCase):
 
     def test_active_better_everywhere_holds(self):
         write(self.root, {("active", 1): (0.9, 0.1), ("active", 2): (0.92, 0.12),
-                          ("supervised", 1): (0.85, 0.2), ("supervised", 2): (0.88, 0.15)}, {"active": 6, "supervised": 4})
+                          ("supervised", 1): (0.85, 0.2), ("supervised", 2): (0.88, 0.15)}, {"active": 9, "supervised": 2})
         measured, v = verdict("neural_active_accuracy", self.root)
         self.assertEqual(v, HOLDS)
         self.assertIn("active higher in 2/2", measured)
         self.assertEqual(verdict("neural_active_fnr", self.root)[1], HOLDS)
         measured, v = verdict("neural_alm_resolves", self.root)
         self.assertEqual(v, HOLDS)
-        self.assertIn("6/10", measured)
+        self.assertIn("9/10", measured)
 
     def test_active_worse_fails_and_mixed_is_inconclusive(self):
         write(self.root, {("active", 1): (0.80, 0.1), ("active", 2): (0.95, 0.3),
-                          ("supervised", 1): (0.85, 0.2), ("supervised", 2): (0.88, 0.15)}, {"active": 3, "supervised": 4})
+                          ("supervised", 1): (0.85, 0.2), ("supervised", 2): (0.88, 0.15)}, {"active": 1, "supervised": 9})
         # accuracy: mean active 0.875 > 0.865 but only 1 of 2 seeds: inconclusive
         self.assertEqual(verdict("neural_active_accuracy", self.root)[1], INCONCLUSIVE)
         # fnr: mean active 0.2 > 0.175 (worse) and 1 of 2 seeds better: inconclusive
@@ -82,6 +82,10 @@ class NeuralClaims(unittest.TestCase):
               {"active": 4, "supervised": 4})
         self.assertEqual(verdict("neural_active_accuracy", self.root)[1], FAILS)
         self.assertEqual(verdict("neural_active_fnr", self.root)[1], FAILS)
+        self.assertEqual(verdict("neural_alm_resolves", self.root)[1], INCONCLUSIVE)
+
+    def test_a_few_codes_more_is_not_enough(self):
+        write(self.root, {("active", 1): (0.9, 0.1), ("supervised", 1): (0.85, 0.2)}, {"active": 6, "supervised": 4})
         self.assertEqual(verdict("neural_alm_resolves", self.root)[1], INCONCLUSIVE)
 
     def test_no_results_is_not_measured(self):

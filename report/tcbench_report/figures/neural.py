@@ -76,7 +76,7 @@ def draw(ctx, runs):
                    f"labels and gradient steps and share each seed's bootstrap. Lines: mean over seeds; bands: "
                    f"min-max. {sizes}. ALM (margins in logits, resolved = the oracle finds no penetration at the "
                    f"ALM's code; distance: median over codes of the latent distance moved over the distance to "
-                   f"the first collision-free code towards the rest pose): {alm_text(results) or 'not run'}.")
+                   f"a collision-free code found by bisection towards the rest pose): {alm_text(results) or 'not run'}.")
         fig.text(0.01, 0.005, f"{title}. build {meta.get('build', {}).get('git_sha', '?')[:10]}; machine "
                               f"{meta.get('machine', {}).get('cpu', '?')}.", fontsize=6, color="0.35")
         fig.tight_layout(rect=(0, 0.03, 1, 1))

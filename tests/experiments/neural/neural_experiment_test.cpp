@@ -8,6 +8,8 @@
 #include <fstream>
 #include <sstream>
 
+#include <unistd.h>
+
 #include <nlohmann/json.hpp>
 
 #include "experiments/neural/detector_scores.hpp"
@@ -28,7 +30,7 @@ std::vector<std::string> lines_of(const fs::path& path) {
 }  // namespace
 
 TEST_CASE("neural experiment: a toy run writes the learning curve, the ALM table and neural.json", "[neural]") {
-  const fs::path out = fs::temp_directory_path() / "tcbench_neural_experiment_test";
+  const fs::path out = fs::temp_directory_path() / ("tcbench_neural_experiment_test_" + std::to_string(::getpid()));
   fs::remove_all(out);
   NeuralExperimentSettings s = neural_experiment_defaults(true);
   s.seeds = {1};
@@ -59,7 +61,16 @@ TEST_CASE("neural experiment: a toy run writes the learning curve, the ALM table
   CHECK(meta["presets"][0]["label_ms_per_code"].get<double>() > 0.0);
   CHECK(meta["build"].contains("git_sha"));
   CHECK(meta["machine"].contains("cpu"));
+  // Three workers write the same files (the jobs write into their own slots).
+  const fs::path threaded = out.string() + "_jobs3";
+  fs::remove_all(threaded);
+  s.out = threaded;
+  s.jobs = 3;
+  run_neural_experiment(s);
+  CHECK(lines_of(threaded / "learning.csv") == learning);
+  CHECK(lines_of(threaded / "alm.csv") == alm);
   fs::remove_all(out);
+  fs::remove_all(threaded);
 }
 
 TEST_CASE("neural experiment: labels are the oracle's, and scores count them", "[neural]") {
