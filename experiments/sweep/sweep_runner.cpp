@@ -16,6 +16,7 @@
 #include "experiments/results/configurations_csv.hpp"
 #include "experiments/results/summary_csv.hpp"
 #include "experiments/run/thread_clock.hpp"
+#include "experiments/sweep/directory_lock.hpp"
 #include "sim/io/input_error.hpp"
 #include "sim/io/atomic_file.hpp"
 
@@ -196,6 +197,8 @@ SweepOutcome run_sweep(const SweepPlan& plan, const SweepOptions& options) {
     finish(run, code == 0 ? "ok" : code == 1 && read_complete_run(runs_dir / run.id) ? "unstable" : "failed");
   }
 
+  // Shards sharing DIR write the summary one at a time; see directory_lock.hpp.
+  const DirectoryLock lock(options.out_dir);
   std::vector<SummaryRow> rows;
   for (const SweepRun& run : plan.runs) {
     SummaryRow row{run.id, read_complete_run(runs_dir / run.id), "missing"};

@@ -7,7 +7,9 @@
 /// ends with every run present exactly once and none half-written.
 /// Relative budgets start once their reference run is complete; the absolute
 /// value they used is in their run.json (budget.value, budget.label).
-/// DIR/summary.csv covers every run of the plan (all shards) found in DIR.
+/// DIR/summary.csv covers every run of the plan (all shards) found in DIR;
+/// shards write it under DIR's lock (directory_lock.hpp), so the last to
+/// finish leaves the complete one.
 
 #include <cstdint>
 #include <filesystem>
