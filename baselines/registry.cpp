@@ -5,6 +5,7 @@
 #include "baselines/full_handler.hpp"
 #include "baselines/none_handler.hpp"
 #include "method/handler/interruptible_handler.hpp"
+#include "method/neural/neural_handler.hpp"
 #include "sim/io/input_error.hpp"
 
 namespace tcb {
@@ -118,6 +119,14 @@ const std::vector<MethodInfo>& method_registry() {
        .make = [](const MethodSettings&) { return std::make_unique<FclTetsHandler>(); },
        .uses_budget = true,
        .reports = MethodInfo::Reports::TetPairVertices},
+      {.name = "neural",
+       .description = "seed 002's learned self-collision detector: one network evaluation per latent-driven object "
+                      "and step (the scene's latent_model), a whole-object verdict, no points and no forces; judged "
+                      "per frame by the oracle (self_frames)",
+       .make = [](const MethodSettings&) { return std::make_unique<NeuralHandler>(); },
+       // It obeys a budget (an evaluation is skipped once it is spent), but one
+       // evaluation per object never needs one: sweeps run it once, budget none.
+       .reports = MethodInfo::Reports::BodyVerdicts},
       {.name = "brute_force",
        .description = "every point against every tet, no hashing: the O(n^2) reference for tests",
        .make = [](const MethodSettings&) { return std::make_unique<FullHandler>(DetectionMode::BruteForce); }},

@@ -32,7 +32,10 @@ struct MethodInfo {
   /// method of the paper's kind), or the vertices of tets in colliding tet
   /// pairs (fcl_tets): a superset of the inside points wherever the pairs
   /// overlap in volume, so the cross-method test compares it as one.
-  enum class Reports { InsidePoints, TetPairVertices } reports = Reports::InsidePoints;
+  /// BodyVerdicts (neural): whether each latent-driven body collides with
+  /// itself, no points; the cross-method test compares its verdict with
+  /// brute_force's, as an approximation.
+  enum class Reports { InsidePoints, TetPairVertices, BodyVerdicts } reports = Reports::InsidePoints;
 };
 
 const std::vector<MethodInfo>& method_registry();

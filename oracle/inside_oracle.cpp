@@ -149,7 +149,7 @@ OracleFrame compute_inside_oracle(const World& world) {
         }
       }
     }
-    if (B.self_collision && !B.passive) {
+    if (self_collision_active(B)) {
       const std::vector<TetSide> sides = classify_self_points(B);
       const SelfDepths self = self_collision_depths(B, sides);
       for (std::size_t v = 0; v < sides.size(); ++v) {

@@ -40,15 +40,23 @@ void OracleMeter::before_dynamics(StepContext& ctx) {
     m_frame = compute_inside_oracle(ctx.world);
     const OracleComparison cmp = compare_with_oracle(ctx.handler.contacts(), m_frame);
     ctx.row.set("oracle_points", cmp.oracle_points);
-    if (cmp.recall) ctx.row.set("recall", *cmp.recall);
-    if (cmp.precision) ctx.row.set("precision", *cmp.precision);
+    m_points_reported = ctx.handler.reports_points();
+    if (cmp.recall && m_points_reported) ctx.row.set("recall", *cmp.recall);
+    if (cmp.precision && m_points_reported) ctx.row.set("precision", *cmp.precision);
     if (cmp.depth_err_mean) ctx.row.set("depth_err_mean", *cmp.depth_err_mean);
     if (cmp.depth_err_max) ctx.row.set("depth_err_max", *cmp.depth_err_max);
     ctx.row.set("max_depth", cmp.max_depth_m);
     ctx.row.set("triangle_pairs", static_cast<std::int64_t>(m_triangle_pairs->find(ctx.world).size()));
     oracle_ms = ms_since(t0);
-    if (cmp.recall) m_recalls.push_back(*cmp.recall);
-    if (cmp.precision) m_precisions.push_back(*cmp.precision);
+    judge_self_frames(ctx);
+    if (m_points_reported) {
+      if (cmp.recall) m_recalls.push_back(*cmp.recall);
+      if (cmp.precision) m_precisions.push_back(*cmp.precision);
+    } else {
+      m_unmeasured.insert(
+          "the method reports whole-object verdicts, not points: point recall, precision and depth errors do not "
+          "apply to it (its measure is self_frames)");
+    }
     m_depth_errors.insert(m_depth_errors.end(), cmp.depth_errors.begin(), cmp.depth_errors.end());
     m_self_depth_errors.insert(m_self_depth_errors.end(), cmp.self_depth_errors.begin(), cmp.self_depth_errors.end());
     m_self_points += cmp.self_points;
@@ -75,6 +83,19 @@ void OracleMeter::before_dynamics(StepContext& ctx) {
   if (oracle_ms) {
     ctx.row.set("oracle_ms", *oracle_ms);
     m_oracle_ms.push_back(*oracle_ms);
+  }
+}
+
+void OracleMeter::judge_self_frames(const StepContext& ctx) {
+  const std::vector<char> verdicts = ctx.handler.self_collision_verdicts(ctx.world);
+  std::vector<char> truth(ctx.world.bodies.size(), 0);
+  for (const OraclePoint& p : m_frame.inside)
+    if (p.object == p.other) truth[static_cast<std::size_t>(p.object)] = 1;
+  for (std::size_t b = 0; b < ctx.world.bodies.size(); ++b) {
+    if (!self_collision_active(ctx.world.bodies[b])) continue;
+    const bool said = b < verdicts.size() && verdicts[b];
+    if (truth[b]) (said ? m_frames_tp : m_frames_fn)++;
+    else (said ? m_frames_fp : m_frames_tn)++;
   }
 }
 
@@ -108,6 +129,20 @@ void OracleMeter::summarize(Json& summary) const {
   summary["overlap_volume_max"] = m_overlap_max ? Json(*m_overlap_max) : Json(nullptr);
   summary["overlap_steps"] = m_overlap_steps;
   summary["overlap_invalid_steps"] = m_overlap_invalid_steps;
+  const std::int64_t frames = m_frames_tp + m_frames_fp + m_frames_fn + m_frames_tn;
+  if (frames == 0) {
+    summary["self_frames"] = nullptr;
+  } else {
+    const auto share = [](std::int64_t a, std::int64_t n) { return n > 0 ? Json(static_cast<double>(a) / n) : Json(nullptr); };
+    summary["self_frames"] = {{"frames", frames},
+                              {"tp", m_frames_tp},
+                              {"fp", m_frames_fp},
+                              {"fn", m_frames_fn},
+                              {"tn", m_frames_tn},
+                              {"recall", share(m_frames_tp, m_frames_tp + m_frames_fn)},
+                              {"precision", share(m_frames_tp, m_frames_tp + m_frames_fp)},
+                              {"accuracy", share(m_frames_tp + m_frames_tn, frames)}};
+  }
   for (const std::string& reason : m_unmeasured) note_unmeasured(summary, reason);
 }
 

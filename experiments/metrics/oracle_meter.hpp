@@ -15,6 +15,20 @@
 /// recall_min, recall_mean, precision_min, depth_err {mean, rms, max},
 /// max_depth (m), oracle_steps, oracle_ms, overlap_volume_max (m^3),
 /// overlap_steps, overlap_invalid_steps; null where the oracle never ran.
+///
+/// Self-collision per frame (summary self_frames): on each oracle step, for
+/// each body with self_collision enabled, the truth is whether the oracle
+/// finds some point of it strictly inside a tet of its own (under its parts'
+/// rule, oracle/self_depth.hpp), the method's verdict its
+/// self_collision_verdicts() (for point methods: it holds such a point).
+/// self_frames = {frames, tp, fp, fn, tn, recall, precision, accuracy}; null
+/// without such bodies or oracle steps; recall (precision) null without
+/// positive truths (verdicts). A whole-body detector (`neural`,
+/// reports_points() false) lists no points: its point-level recall,
+/// precision and depth errors are null, said in oracle_unmeasured, and
+/// self_frames is its measure. A point method's frame verdict is the weakest
+/// use of its points: a frame with one of many self-colliding points found
+/// counts as a true positive.
 
 #include <memory>
 #include <set>
@@ -34,6 +48,7 @@ class OracleMeter final : public Meter {
   void summarize(Json& summary) const override;
 
  private:
+  void judge_self_frames(const StepContext& ctx);
   OracleSchedule m_oracle, m_overlap;
   std::unique_ptr<SurfaceTrianglePairs> m_triangle_pairs;
   OracleFrame m_frame;      // this step's, handed on through StepContext
@@ -43,6 +58,8 @@ class OracleMeter final : public Meter {
   double m_max_depth = 0.0;
   std::optional<double> m_overlap_max;
   std::int64_t m_oracle_steps = 0, m_overlap_steps = 0, m_overlap_invalid_steps = 0;
+  std::int64_t m_frames_tp = 0, m_frames_fp = 0, m_frames_fn = 0, m_frames_tn = 0;
+  bool m_points_reported = true;
   std::set<std::string> m_unmeasured;  // a reason repeats on every step it holds
 };
 

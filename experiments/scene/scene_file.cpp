@@ -110,6 +110,17 @@ ObjectDesc read_object(const toml::table& table, std::size_t index, const std::f
     if (named.vec3("position")) named.fail("position", "a driven object's position comes from its trajectory");
     o.trajectory = *trajectory;
   }
+  if (const auto latent_path = named.string("latent_path")) {
+    if (!o.passive) named.fail("latent_path", "a latent-driven object must be passive = true");
+    if (!o.trajectory.empty()) named.fail("latent_path", "an object follows a trajectory or a latent path, not both");
+    if (o.mesh.rfind("finger:", 0) != 0)
+      named.fail("latent_path", "needs a latent family as the mesh (\"finger:finger_small\" or \"finger:finger_large\")");
+    o.latent_path = *latent_path;
+  }
+  if (const auto model = named.string("latent_model")) {
+    if (o.latent_path.empty()) named.fail("latent_model", "only a latent-driven object (latent_path) has a model");
+    o.latent_model = *model;
+  }
   o.self_collision = named.boolean("self_collision").value_or(false);
   named.node("name");
   o.material = read_material(named, context, file);

@@ -9,7 +9,7 @@ CollisionPairs::CollisionPairs(const World& world)
   for (std::size_t a = 0; a < m_count; ++a)
     for (std::size_t b = 0; b < m_count; ++b) {
       const Body &A = world.bodies[a], &B = world.bodies[b];
-      const bool on = a == b ? (A.self_collision && !A.passive) : !(A.passive && B.passive);
+      const bool on = a == b ? self_collision_active(A) : !(A.passive && B.passive);
       m_enabled[a * m_count + b] = on;
       if (on) m_has_partner[b] = 1;
     }

@@ -64,6 +64,15 @@ class CollisionHandler {
   virtual StepReport step(World& world, Budget& budget) = 0;
   /// The colliding points the method holds after the last step.
   virtual const std::vector<Contact>& contacts() const = 0;
+  /// Whether contacts() lists colliding points (every method of the paper's
+  /// kind). False for a whole-body detector (`neural`): it says only whether
+  /// a body collides with itself, so point-level recall and precision do not
+  /// apply to it; self_collision_verdicts() is what it reports.
+  virtual bool reports_points() const { return true; }
+  /// Per body of the world, after the last step: 1 when the method says the
+  /// body collides with itself, else 0. The default reads contacts(): some
+  /// point of the body inside a tet of the same body.
+  virtual std::vector<char> self_collision_verdicts(const World& world) const;
 };
 
 }  // namespace tcb

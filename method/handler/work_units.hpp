@@ -16,5 +16,9 @@ inline constexpr std::uint64_t kPropagation = 1;    ///< one propagated point (p
 inline constexpr std::uint64_t kNeighbour = 1;
 inline constexpr std::uint64_t kForce = 1;          ///< one penalty force
 inline constexpr std::uint64_t kPrioritize = 1;     ///< one point's place in the fastest-first order
+/// One forward pass of the neural detector (method/neural/neural_handler.hpp):
+/// a few microseconds whatever the mesh size, against roughly 0.1-0.5 us per
+/// unit above; the unit counts the task, not its time.
+inline constexpr std::uint64_t kNetworkEvaluation = 1;
 
 }  // namespace tcb::work

@@ -75,9 +75,17 @@ ContactLink link_of(const World& world, const Contact& c, double depth_m, const 
   return link;
 }
 
+// A contact of a passive body with itself (a latent-driven body's
+// self-collision) acts on nothing: neither side is integrated. Applying it
+// would only book work the driven body never did on anything.
+bool acts_on_nothing(const World& world, const Contact& c) {
+  return c.object == c.other && world.bodies[static_cast<std::size_t>(c.object)].passive;
+}
+
 }  // namespace
 
 void add_force_link(World& world, const Contact& where, const Vec3& force_n, const ResponseParams& params) {
+  if (acts_on_nothing(world, where)) return;
   const double normal = force_n.dot(where.direction);
   if (!(normal > 0.0) || !(params.stiffness_n_per_m > 0.0)) {
     apply_contact_force(world, where, force_n);
@@ -89,6 +97,7 @@ void add_force_link(World& world, const Contact& where, const Vec3& force_n, con
 }
 
 void add_contact_link(World& world, const Contact& c, const ResponseParams& params, double dt_s) {
+  if (acts_on_nothing(world, c)) return;
   if (c.depth_source == DepthSource::None || !(c.depth_m > 0.0)) return;
   // A link with neither spring nor damper does nothing but couple the bodies' solves.
   if (!(params.stiffness_n_per_m > 0.0) && !(params.damping_n_s_per_m > 0.0)) return;
@@ -98,6 +107,7 @@ void add_contact_link(World& world, const Contact& c, const ResponseParams& para
 }
 
 void apply_contact_force(World& world, const Contact& c, const Vec3& force_n) {
+  if (acts_on_nothing(world, c)) return;
   world.bodies[c.object].contact_force_n[c.vertex] += force_n;
   Body& B = world.bodies[c.other];
   const Tet& t = B.mesh->tets[c.tet];

@@ -50,6 +50,9 @@ Vec3 penalty_force(const World& world, const Contact& contact, const ResponsePar
 double contact_reduced_mass(const World& world, const Contact& contact);
 
 /// Adds force to the point and the barycentric reaction to the tet's vertices.
+/// This and the two link functions below do nothing for a contact of a
+/// passive body with itself (a latent-driven body's self-collision): neither
+/// side is integrated, so it acts on nothing.
 void apply_contact_force(World& world, const Contact& contact, const Vec3& force_n);
 
 enum class ResponseMode { Implicit, Explicit };

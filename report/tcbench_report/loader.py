@@ -108,9 +108,10 @@ class Run:
         return node if isinstance(node, (int, float)) and not isinstance(node, bool) else None
 
     def dynamic_tets(self):
-        """Tetrahedra of the integrated objects: the size a scaling figure plots against."""
+        """Tetrahedra of the objects that change shape (integrated, or driven through a latent path): the size a
+        scaling figure plots against."""
         objects = (self.record.get("world") or {}).get("objects") or []
-        return sum(o.get("tets", 0) for o in objects if not o.get("passive"))
+        return sum(o.get("tets", 0) for o in objects if not o.get("passive") or o.get("latent"))
 
     def has_frames(self):
         return os.path.exists(os.path.join(self.dir, "frames.pvd"))

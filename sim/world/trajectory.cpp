@@ -1,11 +1,8 @@
 #include "sim/world/trajectory.hpp"
 
 #include <algorithm>
-#include <cmath>
-#include <fstream>
-#include <sstream>
 
-#include "sim/io/input_error.hpp"
+#include "sim/io/numeric_csv.hpp"
 
 namespace tcb {
 
@@ -19,41 +16,11 @@ Vec3 Trajectory::at(double t_s) const {
 }
 
 Trajectory read_trajectory_csv(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path.string(), 0, "cannot open the trajectory file");
   Trajectory t;
-  std::string line;
-  int number = 0;
-  while (std::getline(in, line)) {
-    ++number;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (number == 1) {
-      if (line != "time_s,x_m,y_m,z_m") throw InputError(path.string(), 1, "expected the header time_s,x_m,y_m,z_m");
-      continue;
-    }
-    if (line.empty()) continue;
-    std::stringstream cells(line);
-    double v[4];
-    for (int k = 0; k < 4; ++k) {
-      std::string cell;
-      if (!std::getline(cells, cell, ',')) throw InputError(path.string(), number, "expected 4 values");
-      try {
-        std::size_t used = 0;
-        v[k] = std::stod(cell, &used);
-        if (used != cell.size()) throw std::invalid_argument(cell);
-      } catch (const std::exception&) {
-        throw InputError(path.string(), number, "'" + cell + "' is not a number");
-      }
-      if (!std::isfinite(v[k])) throw InputError(path.string(), number, "values must be finite");
-    }
-    std::string extra;
-    if (std::getline(cells, extra, ',')) throw InputError(path.string(), number, "expected 4 values");
-    if (!t.time_s.empty() && !(v[0] > t.time_s.back()))
-      throw InputError(path.string(), number, "times must increase strictly");
-    t.time_s.push_back(v[0]);
-    t.position_m.emplace_back(v[1], v[2], v[3]);
+  for (const std::vector<double>& row : read_numeric_csv(path, "time_s,x_m,y_m,z_m", "trajectory")) {
+    t.time_s.push_back(row[0]);
+    t.position_m.emplace_back(row[1], row[2], row[3]);
   }
-  if (t.time_s.empty()) throw InputError(path.string(), number, "no samples");
   return t;
 }
 

@@ -31,6 +31,8 @@ World clone_world(const World& world) {
     c.model = b.model ? b.model->clone() : nullptr;
     c.trajectory = b.trajectory;
     c.shape_m = b.shape_m;
+    c.latent = b.latent;
+    c.latent_code = b.latent_code;
     c.external_force_n = b.external_force_n;
     copy.bodies.push_back(std::move(c));
   }
@@ -69,13 +71,20 @@ void World::step(double dt_s) {
   contact_links.clear();
   for (Body& body : bodies) std::fill(body.contact_force_n.begin(), body.contact_force_n.end(), Vec3::Zero());
   for (Body& body : bodies) {
-    if (!body.trajectory) continue;
-    const Vec3 at = body.trajectory->at(time_s + dt_s);
+    if (!body.trajectory && !body.latent) continue;
+    std::vector<Vec3> next;
+    if (body.latent) {
+      body.latent_code = body.latent->path.at(time_s + dt_s);
+      next = body.latent->positions_m(body.latent_code);
+    } else {
+      const Vec3 at = body.trajectory->at(time_s + dt_s);
+      next = body.shape_m;
+      for (Vec3& p : next) p += at;
+    }
     for (std::size_t i = 0; i < body.x_m.size(); ++i) {
-      const Vec3 next = body.shape_m[i] + at;
-      driven_work_j -= body.applied_contact_force_n[i].dot(next - body.x_m[i]);
-      body.v_m_per_s[i] = (next - body.x_m[i]) / dt_s;
-      body.x_m[i] = next;
+      driven_work_j -= body.applied_contact_force_n[i].dot(next[i] - body.x_m[i]);
+      body.v_m_per_s[i] = (next[i] - body.x_m[i]) / dt_s;
+      body.x_m[i] = next[i];
     }
   }
   time_s += dt_s;

@@ -10,7 +10,8 @@
 /// links takes its model's own step, exactly as without contacts. Passive bodies are
 /// never integrated (their positions stay as built) but still collide; a
 /// driven passive body moves to its trajectory's position at the new time,
-/// with the velocity of that motion.
+/// with the velocity of that motion; a latent-driven one (latent_path.hpp)
+/// to the decoded shape of its path's code at the new time, likewise.
 /// Contact forces and links are cleared at the end of every step; the force
 /// that contacts actually applied in it (explicit forces plus the links'
 /// solved forces) stays in Body::applied_contact_force_n. Units: SI.
@@ -31,6 +32,7 @@
 #include "sim/world/contact_link.hpp"
 #include "sim/world/coupled_solve.hpp"
 #include "sim/world/ground.hpp"
+#include "sim/latent/latent_path.hpp"
 #include "sim/world/trajectory.hpp"
 
 namespace tcb {
@@ -52,8 +54,19 @@ struct Body {
   /// Driven bodies (passive): positions are shape_m + trajectory->at(t) at every step.
   std::shared_ptr<const Trajectory> trajectory;
   std::vector<Vec3> shape_m;            ///< the scaled mesh before translation (driven bodies)
+  /// Latent-driven bodies (passive): positions are latent->positions_m(z(t))
+  /// at every step, z(t) = latent->path.at(t), which latent_code holds.
+  std::shared_ptr<const LatentDrive> latent;
+  Eigen::VectorXd latent_code;
   std::vector<Vec3> external_force_n;   ///< scratch of step()
 };
+
+/// Whether a body's self-collision is handled: enabled for it, and its shape
+/// can change (a dynamic body, or one driven through a latent path). A fixed
+/// or rigidly driven body cannot come to collide with itself.
+inline bool self_collision_active(const Body& body) {
+  return body.self_collision && (!body.passive || body.latent != nullptr);
+}
 
 /// Mass-weighted centre of a body's vertices (m); the plain mean when it has no mass.
 Vec3 centre_of_mass_m(const Body& body);

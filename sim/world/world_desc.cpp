@@ -6,16 +6,30 @@
 #include <map>
 
 #include "sim/io/input_error.hpp"
+#include "sim/latent/latent_path.hpp"
 #include "sim/mesh/load_mesh.hpp"
 
 namespace tcb {
 namespace {
+
+constexpr const char* kFingerPrefix = "finger:";
+
+// The skinned finger of a "finger:PRESET" mesh; InputError listing the presets otherwise.
+std::shared_ptr<const SkinnedFinger> finger_of(const ObjectDesc& object) {
+  const std::string preset = object.mesh.substr(std::string(kFingerPrefix).size());
+  try {
+    return std::make_shared<const SkinnedFinger>(finger_preset(preset));
+  } catch (const std::invalid_argument& e) {
+    throw InputError(object.mesh, 0, e.what());
+  }
+}
 
 std::shared_ptr<const TetMesh> load_cached(const ObjectDesc& object, const WorldDesc& desc,
                                            std::map<std::string, std::shared_ptr<const TetMesh>>& cache) {
   const std::string key = (object.base_dir / object.mesh).lexically_normal().string();
   if (auto it = cache.find(key); it != cache.end()) return it->second;
   try {
+    if (object.mesh.rfind(kFingerPrefix, 0) == 0) return finger_of(object)->mesh();
     auto mesh = std::make_shared<const TetMesh>(load_mesh(object.mesh, object.base_dir));
     cache.emplace(key, mesh);
     return mesh;
@@ -76,6 +90,33 @@ void check_object(World& world, const WorldDesc& desc, const ObjectDesc& object,
                                                who, massless, mass.size()));
 }
 
+// A body driven along a latent path: at its path's first code, not the rest mesh.
+Body make_latent_body(const WorldDesc& desc, const ObjectDesc& object, std::shared_ptr<const TetMesh> mesh) {
+  const auto blame = [&](const std::string& what) {
+    throw InputError(desc.path.empty() ? object.name : desc.path.string(), object.source_line,
+                     "object '" + object.name + "': " + what);
+  };
+  if (object.mesh.rfind(kFingerPrefix, 0) != 0)
+    blame("latent_path needs a latent family as its mesh (\"finger:finger_small\" or \"finger:finger_large\"), not '" +
+          object.mesh + "'");
+  auto drive = std::make_shared<LatentDrive>();
+  drive->family = object.mesh.substr(std::string(kFingerPrefix).size());
+  drive->finger = finger_of(object);
+  drive->scale = object.scale;
+  drive->position_m = object.position_m;
+  if (!object.latent_model.empty()) drive->model_path = (object.base_dir / object.latent_model).lexically_normal();
+  try {
+    drive->path = read_latent_path_csv(object.base_dir / object.latent_path, drive->finger->latent_size());
+  } catch (const InputError& e) {
+    if (e.line() > 0 || desc.path.empty()) throw;
+    blame(e.what());
+  }
+  Body body = make_body(object.name, object, std::move(mesh), drive->positions_m(drive->path.at(0.0)));
+  body.latent_code = drive->path.at(0.0);
+  body.latent = std::move(drive);
+  return body;
+}
+
 }  // namespace
 
 World build_world(const WorldDesc& desc) {
@@ -97,6 +138,10 @@ World build_world(const WorldDesc& desc) {
                                      "exact geometric predicates",
                                      object.name, object.scale, kMaxCoordinate_m));
     check_object(world, desc, object, *mesh, scaled);
+    if (!object.latent_path.empty()) {
+      world.bodies.push_back(make_latent_body(desc, object, mesh));
+      continue;
+    }
     if (!object.trajectory.empty()) {
       std::shared_ptr<const Trajectory> path;
       try {

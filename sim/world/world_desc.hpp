@@ -55,6 +55,14 @@ struct ObjectDesc {
   /// (its position over time, replacing position_m), is passive, and its
   /// contact forces are the run's probe force. Empty: not driven.
   std::string trajectory;
+  /// A latent path CSV (relative to base_dir; latent/latent_path.hpp): the
+  /// object, whose mesh must be a latent family ("finger:finger_small"), is
+  /// driven through the shapes of the path's codes, and is passive. Empty:
+  /// not latent-driven.
+  std::string latent_path;
+  /// The network trained for the family (relative to base_dir), for the
+  /// `neural` method; empty: none.
+  std::string latent_model;
 };
 
 struct WorldDesc {
@@ -65,6 +73,9 @@ struct WorldDesc {
   std::vector<ObjectDesc> objects;
 };
 
+/// Mesh sources: a file or a box generator (sim/mesh/load_mesh.hpp), or
+/// "finger:PRESET", the rest mesh of a skinned finger preset
+/// (latent/skinned_finger.hpp), parts = bones.
 /// Loads each distinct mesh once and builds the world. Throws InputError for a
 /// mesh that cannot be loaded (naming the mesh file, or the scene line when
 /// the problem is the source string itself).

@@ -57,7 +57,7 @@ def draw(ctx, runs):
                 ax.errorbar(tets, p50, yerr=[[p50 - lo], [hi - p50]], color=line.get_color(), lw=0.8, capsize=2)
         if all(p[4] is not None for p in pts):
             ax.plot([p[0] for p in pts], [p[4] for p in pts], "x:", label=f"{legend} p99")
-    ax.set(xscale="log", yscale="log", xlabel="tetrahedra (dynamic objects)",
+    ax.set(xscale="log", yscale="log", xlabel="tetrahedra (objects that change shape)",
            ylabel="handling time per step (ms)")
     # Tick the sizes that were run: a log axis over less than a decade labels its minor ticks on top of each other.
     sizes = sorted({r.dynamic_tets() for rs in lines.values() for r in rs})
@@ -67,6 +67,6 @@ def draw(ctx, runs):
     scenes = ", ".join(sorted({r.scene for rs in lines.values() for r in rs}))
     return ctx.save(fig, FILE, f"{TITLE}: {scenes}",
                     "Collision handling time per step, its median (p50, solid) and p99 (dotted), against the "
-                    "number of tetrahedra of the dynamic objects.", [r for rs in lines.values() for r in rs],
+                    "number of tetrahedra of the objects that change shape (integrated or latent-driven).", [r for rs in lines.values() for r in rs],
                     "each point is their median (the p50's bootstrap 95 % interval as a bar; the p99 the median of "
                     "theirs)")

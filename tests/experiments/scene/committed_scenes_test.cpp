@@ -52,3 +52,35 @@ TEST_CASE("haptic_probe: the probe presses the cow and the force the device rend
   CHECK(std::stod(cells[y]) > 0.0);  // the cow pushes the probe up
   fs::remove_all(options.out_dir);
 }
+
+TEST_CASE("finger_curl: the oracle judges neural and full per frame; neural has no point metrics", "[scene][neural]") {
+  const SceneDesc scene = load_scene_file(resolve_scene("finger_curl", default_scene_dirs()));
+  const auto summary_of = [&](const std::string& method) {
+    RunOptions options;
+    options.method = method;
+    options.steps = 600;  // through the first curl (self-collision from about 0.3 s)
+    options.oracle.every = 10;
+    options.out_dir = fs::temp_directory_path() / ("tcbench_finger_" + method + std::to_string(::getpid()));
+    REQUIRE(run_scene(scene, options).status == "ok");
+    const auto run = nlohmann::json::parse(read_file(options.out_dir / "run.json"));
+    fs::remove_all(options.out_dir);
+    return run["summary"];
+  };
+  const auto full = summary_of("full");
+  const auto neural = summary_of("neural");
+  INFO("full " << full["self_frames"].dump() << "; neural " << neural["self_frames"].dump());
+  REQUIRE(full["self_frames"].is_object());
+  CHECK(full["self_frames"]["frames"] == 60);
+  CHECK(full["self_frames"]["tp"].get<int>() > 0);   // the path does fold the finger
+  CHECK(full["self_frames"]["tn"].get<int>() > 0);   // and not all the time
+  CHECK(full["self_frames"]["accuracy"] == 1.0);     // full detection is exact here
+  CHECK(full["recall_min"] == 1.0);
+  REQUIRE(neural["self_frames"].is_object());
+  CHECK(neural["self_frames"]["frames"] == 60);
+  CHECK(neural["self_frames"]["accuracy"].get<double>() >= 0.8);  // a learned approximation; 0.94 over the whole path
+  CHECK(neural["recall_min"].is_null());
+  CHECK(neural["precision_min"].is_null());
+  CHECK(neural["work_units_total"] == 600);  // one evaluation per step
+  const std::string reasons = neural["oracle_unmeasured"].dump();
+  CHECK_THAT(reasons, Catch::Matchers::Contains("whole-object verdicts"));
+}

@@ -140,6 +140,15 @@ TEST_CASE("scene file: malformed input names the file, the line and the problem"
       {"--set contradicts the file", kScene, {"object.plate.material.model=corotational_fem"}, "bad.toml", 20,
        "integrates with \"implicit_euler\" only"},
       {"--set into a value", obj, {"object.0.mesh.x=1"}, "--set object.0.mesh.x=1", 0, "not a table"},
+      {"latent path, not passive", "[[object]]\nmesh = \"finger:finger_small\"\nlatent_path = \"p.csv\"\n", {},
+       "bad.toml", 3, "a latent-driven object must be passive = true"},
+      {"latent path on a box", obj + "passive = true\nlatent_path = \"p.csv\"\n", {}, "bad.toml", 4,
+       "needs a latent family as the mesh"},
+      {"latent path and trajectory",
+       "[[object]]\nmesh = \"finger:finger_small\"\npassive = true\ntrajectory = \"t.csv\"\nlatent_path = \"p.csv\"\n",
+       {}, "bad.toml", 5, "a trajectory or a latent path, not both"},
+      {"latent model without path", obj + "passive = true\nlatent_model = \"m.json\"\n", {}, "bad.toml", 4,
+       "only a latent-driven object (latent_path) has a model"},
   };
   for (const BadCase& c : cases) check_rejected(c, "bad.toml");
 }

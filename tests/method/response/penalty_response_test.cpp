@@ -105,3 +105,30 @@ TEST_CASE("flat and sliver tets produce no NaN and are never claimed", "[respons
   world.step(scene.world.dt_s);
   CHECK(std::isfinite(world.max_speed_m_per_s()));
 }
+
+TEST_CASE("a contact of a passive body with itself acts on nothing", "[response]") {
+  // A latent-driven body's self-collision: neither side is integrated, so no
+  // force, no link (and no work booked for the driven body).
+  test::TestScene scene = test::scene_of({{"a", "box:size=0.2x0.2x0.2,cells=2x2x2", Vec3::Zero(), true, true}});
+  World world = build_world(scene.world);
+  Contact c;
+  c.object = c.other = 0;
+  c.vertex = 0;
+  c.tet = 5;
+  c.barycentric = {0.25, 0.25, 0.25, 0.25};
+  c.depth_source = DepthSource::Border;
+  c.depth_m = 0.01;
+  c.direction = Vec3(0, 1, 0);
+  apply_contact_force(world, c, Vec3(1, 2, 3));
+  add_force_link(world, c, Vec3(0, 5, 0), ResponseParams{.stiffness_n_per_m = 100.0});
+  add_contact_link(world, c, ResponseParams{.stiffness_n_per_m = 100.0}, 1e-3);
+  CHECK(total_force(world) == Vec3::Zero());
+  for (const Vec3& f : world.bodies[0].contact_force_n) CHECK(f == Vec3::Zero());
+  CHECK(world.contact_links.empty());
+  // The same contact on a dynamic body does act.
+  world.bodies[0].passive = false;
+  apply_contact_force(world, c, Vec3(1, 2, 3));
+  double moved = 0.0;  // the point's force and the tet's reaction (vertex 0 may be both)
+  for (const Vec3& f : world.bodies[0].contact_force_n) moved += f.norm();
+  CHECK(moved > 1.0);
+}
