@@ -6,7 +6,9 @@
 #include <iostream>
 
 #include "experiments/cli/command.hpp"
+#include "experiments/neural/code_labels.hpp"
 #include "experiments/neural/neural_experiment.hpp"
+#include "experiments/neural/path_resolution.hpp"
 #include "experiments/neural/train_detector.hpp"
 #include "sim/io/input_error.hpp"
 #include "sim/latent/skinned_finger.hpp"
@@ -63,10 +65,48 @@ class NeuralCommand final : public Command {
     m_train->add_option("--steps-per-round", m_steps_per_round, "Adam steps each round (default 500)")
         ->check(CLI::Range(0, 100000000));
     m_train->add_flag("--quiet", m_quiet, "No progress lines");
+
+    m_gen = app->add_subcommand("gen", "Write uniformly drawn codes with their exact labels (a data set for your own detector)");
+    m_gen->footer(
+        "Writes OUT.csv: z0..z11, collides (the oracle: some vertex inside tets of a part outside its own\n"
+        "neighbourhood), pd_m (the largest true vertex depth, m). The same --seed gives the same codes.\n"
+        "Exit status: 0 written; 2 bad input.");
+    m_gen->add_option("--out", m_gen_out, "The CSV file to write")->required();
+    m_gen->add_option("--preset", m_gen_preset, "Latent family: finger_small or finger_large")->capture_default_str();
+    m_gen->add_option("--codes", m_gen_codes, "How many codes")->check(CLI::Range(1, 100000000))->capture_default_str();
+    m_gen->add_option("--seed", m_gen_seed, "Seed of the draw")->check(CLI::Range(0, 1000000000))->capture_default_str();
+
+    m_alm = app->add_subcommand("alm", "Resolve the colliding frames of a latent path with the ALM, under a work budget per step");
+    m_alm->footer(
+        "For each code of the path: the network's logit and the oracle's verdict; where the network says\n"
+        "colliding, the ALM (min |z - z0|^2 subject to logit + margin <= 0) runs --budget-work network\n"
+        "evaluations a step, resumed until done, and the oracle judges its answer. Writes OUT.csv, one row\n"
+        "per path sample (time_s, logit, network_collides, oracle_collides, oracle_pd_m, alm_steps,\n"
+        "alm_evaluations, alm_feasible, alm_converged, distance, resolved).\n"
+        "Example: tcbench neural alm --model experiments/scenes/finger_small_active.json\n"
+        "           --path experiments/scenes/finger_curl_path.csv --budget-work 20 --out alm_path.csv\n"
+        "Exit status: 0 written; 2 bad input.");
+    m_alm->add_option("--model", m_alm_model, "The network (tcbench neural train)")->required();
+    m_alm->add_option("--path", m_alm_path, "A latent path CSV (time_s,z0,...)")->required();
+    m_alm->add_option("--out", m_alm_out, "The CSV file to write")->required();
+    m_alm->add_option("--preset", m_alm_preset, "The model's latent family")->capture_default_str();
+    m_alm->add_option("--margin", m_alm_margin, "Constraint margin in logits: logit + margin <= 0")
+        ->check(CLI::Range(-100.0, 100.0))
+        ->capture_default_str();
+    m_alm->add_option("--budget-work", m_alm_work, "Network evaluations per step (0: unlimited, one step)")
+        ->check(CLI::Range(0, 1000000000))
+        ->capture_default_str();
   }
 
   int execute() override {
     if (m_train->parsed()) return train();
+    if (m_gen->parsed()) {
+      const CodeLabelCounts c = label_uniform_codes(m_gen_preset, m_gen_codes, static_cast<std::uint64_t>(m_gen_seed), m_gen_out);
+      std::cout << fmt::format("wrote {}: {} {} codes, {} colliding, labels {:.2f} ms/code\n", m_gen_out, c.codes,
+                               m_gen_preset, c.colliding, 1e3 * c.label_seconds / static_cast<double>(c.codes));
+      return 0;
+    }
+    if (m_alm->parsed()) return alm();
     NeuralExperimentSettings s = neural_experiment_defaults(m_quick);
     for (const std::string& p : m_presets) {
       try {
@@ -116,8 +156,34 @@ class NeuralCommand final : public Command {
     return 0;
   }
 
+  int alm() {
+    PathResolutionSettings s;
+    s.preset = m_alm_preset;
+    s.model = m_alm_model;
+    s.path = m_alm_path;
+    s.out = m_alm_out;
+    s.margin = m_alm_margin;
+    s.work_per_step = static_cast<std::uint64_t>(m_alm_work);
+    const PathResolution r = resolve_path(s);
+    std::cout << fmt::format(
+        "wrote {}: {} frames; the network says colliding on {} (the oracle on {}, both on {}); the ALM resolved {} "
+        "of {} (oracle-checked), median distance {:.3g}, longest {} step(s) at {} evaluations a step{}\n",
+        m_alm_out, r.frames, r.network_colliding, r.oracle_colliding, r.true_positives, r.resolved, r.network_colliding,
+        r.distance_median, r.steps_max, m_alm_work == 0 ? std::string("unlimited") : std::to_string(m_alm_work),
+        r.abandoned ? fmt::format(", {} abandoned", r.abandoned) : std::string());
+    return 0;
+  }
+
   CLI::App* m_experiment = nullptr;
   CLI::App* m_train = nullptr;
+  CLI::App* m_gen = nullptr;
+  CLI::App* m_alm = nullptr;
+  std::string m_gen_out, m_gen_preset = "finger_small";
+  std::int64_t m_gen_codes = 1000;
+  int m_gen_seed = 1;
+  std::string m_alm_model, m_alm_path, m_alm_out, m_alm_preset = "finger_small";
+  double m_alm_margin = 0.0;
+  std::int64_t m_alm_work = 0;
   std::string m_model, m_train_preset = "finger_small", m_strategy = "active";
   int m_train_seed = 1;
   std::string m_out = "neural_results";
