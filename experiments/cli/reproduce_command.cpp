@@ -99,8 +99,11 @@ class ReproduceCommand final : public Command {
     }
     // The neural detector of seed 002 is not a sweep of runs: its experiment
     // writes its own tables, which the report finds beneath DIR.
-    if (!(m_options.resume && std::filesystem::exists(std::filesystem::path(m_out) / "7_neural" / "neural.json"))) {
-      NeuralExperimentSettings neural = neural_experiment_defaults(m_options.quick);
+    // --resume keeps an earlier neural experiment only when it ran this mode's
+    // seeds and presets (a --quick one is redone by a full reproduce).
+    const NeuralExperimentSettings wanted = neural_experiment_defaults(m_options.quick);
+    if (!(m_options.resume && neural_results_match(std::filesystem::path(m_out) / "7_neural" / "neural.json", wanted))) {
+      NeuralExperimentSettings neural = wanted;
       neural.out = std::filesystem::path(m_out) / "7_neural";
       neural.jobs = 2;  // not a timing experiment: both cores
       neural.command_line = argv;

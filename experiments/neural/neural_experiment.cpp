@@ -12,6 +12,7 @@
 #include <mutex>
 #include <thread>
 
+#include "experiments/metrics/distribution.hpp"
 #include "experiments/neural/detector_scores.hpp"
 #include "experiments/neural/finger_labeller.hpp"
 #include "experiments/run/provenance.hpp"
@@ -35,20 +36,21 @@ double seconds_since(Clock::time_point start) { return std::chrono::duration<dou
 
 std::string cell(double x) { return std::isfinite(x) ? fmt::format("{}", x) : std::string(); }
 
-double median(std::vector<double> v) {
+// Median and mean of the finite values (NaN when none): a code whose
+// reference distance is undefined (NaN) is left out, not counted as 0.
+std::vector<double> finite_values(std::vector<double> v) {
   v.erase(std::remove_if(v.begin(), v.end(), [](double x) { return !std::isfinite(x); }), v.end());
-  if (v.empty()) return std::nan("");
-  std::sort(v.begin(), v.end());
-  const std::size_t m = v.size() / 2;
-  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+  return v;
+}
+
+double median(const std::vector<double>& v) {
+  const std::vector<double> f = finite_values(v);
+  return f.empty() ? std::nan("") : summarize(f).p50;
 }
 
 double mean(const std::vector<double>& v) {
-  double s = 0.0;
-  std::size_t n = 0;
-  for (const double x : v)
-    if (std::isfinite(x)) s += x, ++n;
-  return n ? s / static_cast<double>(n) : std::nan("");
+  const std::vector<double> f = finite_values(v);
+  return f.empty() ? std::nan("") : summarize(f).mean;
 }
 
 // Distance from z0 to a collision-free code on the segment towards the rest
@@ -83,6 +85,7 @@ void parallel_jobs(std::size_t count, int workers, Job&& job) {
         } catch (...) {
           const std::lock_guard<std::mutex> lock(error_mutex);
           if (!error) error = std::current_exception();
+          next = count;  // hand out no more jobs: the first error ends the experiment
         }
       }
     });
@@ -342,6 +345,17 @@ void run_neural_experiment(const NeuralExperimentSettings& settings) {
   write_file_atomically(settings.out / "learning.csv", learning.str());
   write_file_atomically(settings.out / "alm.csv", alm.str());
   write_file_atomically(settings.out / "neural.json", meta.dump(2) + "\n");
+}
+
+bool neural_results_match(const std::filesystem::path& neural_json, const NeuralExperimentSettings& wanted) {
+  try {
+    const auto meta = nlohmann::json::parse(read_file(neural_json));
+    std::vector<std::string> presets;
+    for (const auto& p : meta.at("presets")) presets.push_back(p.at("preset").get<std::string>());
+    return meta.at("seeds").get<std::vector<std::uint64_t>>() == wanted.seeds && presets == wanted.presets;
+  } catch (const std::exception&) {
+    return false;  // missing, unreadable or not ours: run it again
+  }
 }
 
 }  // namespace tcb

@@ -69,6 +69,15 @@ TEST_CASE("neural experiment: a toy run writes the learning curve, the ALM table
   run_neural_experiment(s);
   CHECK(lines_of(threaded / "learning.csv") == learning);
   CHECK(lines_of(threaded / "alm.csv") == alm);
+  // reproduce --resume keeps results only of the same seeds and presets.
+  CHECK(neural_results_match(out / "neural.json", s));
+  NeuralExperimentSettings other = s;
+  other.seeds = {1, 2};
+  CHECK_FALSE(neural_results_match(out / "neural.json", other));
+  other = s;
+  other.presets = {"finger_small", "finger_large"};
+  CHECK_FALSE(neural_results_match(out / "neural.json", other));
+  CHECK_FALSE(neural_results_match(out / "missing.json", s));
   fs::remove_all(out);
   fs::remove_all(threaded);
 }
