@@ -810,6 +810,9 @@ INFERIOR_OURS = (
 
 # ---------------------------------------------------------------- the neural detector (seed 002)
 
+NEURAL_MIN_SEEDS = 3
+
+
 def neural_compare(key, better, what):
     """A rule comparing the last round's `key` of active and supervised learning, seed against seed, from
     the neural experiment's files beneath the report's root (runs play no part)."""
@@ -822,9 +825,11 @@ def neural_compare(key, better, what):
         for preset, active, supervised, wins, seeds in rows:
             texts.append(f"{preset}: {what} active {active:.3f} vs supervised {supervised:.3f} (mean of the last "
                          f"round over {seeds} seeds; active {better} in {wins}/{seeds})")
-            ahead = active > supervised if better == "higher" else active < supervised
-            verdicts.append(HOLDS if ahead and 2 * wins > seeds else
-                            FAILS if not ahead and 2 * wins < seeds else INCONCLUSIVE)
+            # Paired by seed (both strategies share each seed's bootstrap). It holds when active is better on
+            # every seed, fails when it is better on none, of at least 3 seeds (unanimity by chance: 1/8 or
+            # less); anything else, or fewer seeds, is inconclusive.
+            verdicts.append(INCONCLUSIVE if seeds < NEURAL_MIN_SEEDS else
+                            HOLDS if wins == seeds else FAILS if wins == 0 else INCONCLUSIVE)
         verdict = verdicts[0] if len(set(verdicts)) == 1 else "partly: " + ", ".join(
             f"{r[0]} {v}" for r, v in zip(rows, verdicts))
         return "; ".join(texts), verdict
@@ -861,9 +866,9 @@ def neural_alm(runs, ctx):
     return "; ".join(texts), verdict
 
 
-NEURAL_OURS = ("the verdict: the mean over seeds of the last round favours active learning and so do most "
-               "seeds (both strategies share each seed's bootstrap, labels and gradient steps); mixed: "
-               "inconclusive",)
+NEURAL_OURS = ("the verdict, paired by seed (both strategies share each seed's bootstrap, labels and gradient "
+               "steps): holds when the last round favours active learning on every one of at least 3 seeds, fails "
+               "when it favours it on none; mixed, or fewer seeds: inconclusive",)
 
 
 CLAIMS = [

@@ -58,15 +58,29 @@ class NeuralClaims(unittest.TestCase):
         shutil.rmtree(self.root)
 
     def test_active_better_everywhere_holds(self):
-        write(self.root, {("active", 1): (0.9, 0.1), ("active", 2): (0.92, 0.12),
-                          ("supervised", 1): (0.85, 0.2), ("supervised", 2): (0.88, 0.15)}, {"active": 9, "supervised": 2})
+        write(self.root, {("active", 1): (0.9, 0.1), ("active", 2): (0.92, 0.12), ("active", 3): (0.91, 0.1),
+                          ("supervised", 1): (0.85, 0.2), ("supervised", 2): (0.88, 0.15),
+                          ("supervised", 3): (0.9, 0.11)}, {"active": 9, "supervised": 2})
         measured, v = verdict("neural_active_accuracy", self.root)
         self.assertEqual(v, HOLDS)
-        self.assertIn("active higher in 2/2", measured)
+        self.assertIn("active higher in 3/3", measured)
         self.assertEqual(verdict("neural_active_fnr", self.root)[1], HOLDS)
         measured, v = verdict("neural_alm_resolves", self.root)
         self.assertEqual(v, HOLDS)
         self.assertIn("9/10", measured)
+
+    def test_two_seeds_are_too_few_to_hold(self):
+        write(self.root, {("active", 1): (0.9, 0.1), ("active", 2): (0.92, 0.12),
+                          ("supervised", 1): (0.85, 0.2), ("supervised", 2): (0.88, 0.15)}, {"active": 9, "supervised": 2})
+        measured, v = verdict("neural_active_accuracy", self.root)
+        self.assertEqual(v, INCONCLUSIVE)
+        self.assertIn("active higher in 2/2", measured)
+
+    def test_better_on_most_but_not_every_seed_is_inconclusive(self):
+        write(self.root, {("active", s): (0.9, 0.1) for s in (1, 2, 3)} | {("active", 4): (0.8, 0.3)} |
+              {("supervised", s): (0.85, 0.2) for s in (1, 2, 3, 4)}, {"active": 9, "supervised": 2})
+        self.assertEqual(verdict("neural_active_accuracy", self.root)[1], INCONCLUSIVE)
+        self.assertEqual(verdict("neural_active_fnr", self.root)[1], INCONCLUSIVE)
 
     def test_active_worse_fails_and_mixed_is_inconclusive(self):
         write(self.root, {("active", 1): (0.80, 0.1), ("active", 2): (0.95, 0.3),
