@@ -16,6 +16,24 @@
 namespace tcb::cli {
 namespace {
 
+// Where a command will write, checked before its work (minutes of labelling
+// or training) rather than after it: exit 2 naming the option.
+void check_output_file(const std::string& file, const char* option) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path path(file);
+  if (fs::is_directory(path, ec)) throw InputError(option, 0, "'" + file + "' is a directory, not a file to write");
+  const fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
+  if (!fs::is_directory(dir, ec)) throw InputError(option, 0, "no directory '" + dir.string() + "' to write '" + file + "' into");
+}
+
+void make_output_dir(const std::string& dir, const char* option) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec || !std::filesystem::is_directory(dir))
+    throw InputError(option, 0, "cannot make the directory '" + dir + "'" + (ec ? ": " + ec.message() : std::string()));
+}
+
 class NeuralCommand final : public Command {
  public:
   explicit NeuralCommand(CLI::App& parent) {
@@ -101,6 +119,7 @@ class NeuralCommand final : public Command {
   int execute() override {
     if (m_train->parsed()) return train();
     if (m_gen->parsed()) {
+      check_output_file(m_gen_out, "--out");
       const CodeLabelCounts c = label_uniform_codes(m_gen_preset, m_gen_codes, static_cast<std::uint64_t>(m_gen_seed), m_gen_out);
       std::cout << fmt::format("wrote {}: {} {} codes, {} colliding, labels {:.2f} ms/code\n", m_gen_out, c.codes,
                                m_gen_preset, c.colliding, 1e3 * c.label_seconds / static_cast<double>(c.codes));
@@ -124,6 +143,7 @@ class NeuralCommand final : public Command {
     if (m_labels_per_round > 0) s.learning.labels_per_round = m_labels_per_round;
     if (m_steps_per_round >= 0) s.learning.steps_per_round = m_steps_per_round;
     if (m_test_codes > 0) s.test_codes = m_test_codes;
+    make_output_dir(m_out, "--out");
     s.out = m_out;
     s.jobs = m_jobs;
     s.command_line = argv;
@@ -135,6 +155,7 @@ class NeuralCommand final : public Command {
 
  private:
   int train() {
+    check_output_file(m_model, "--out");
     TrainDetectorSettings s = train_detector_defaults();
     try {
       (void)finger_preset(m_train_preset);
@@ -157,6 +178,7 @@ class NeuralCommand final : public Command {
   }
 
   int alm() {
+    check_output_file(m_alm_out, "--out");
     PathResolutionSettings s;
     s.preset = m_alm_preset;
     s.model = m_alm_model;

@@ -17,10 +17,14 @@
 /// overlap_steps, overlap_invalid_steps; null where the oracle never ran.
 ///
 /// Self-collision per frame (summary self_frames): on each oracle step, for
-/// each body with self_collision enabled, the truth is whether the oracle
-/// finds some point of it strictly inside a tet of its own (under its parts'
-/// rule, oracle/self_depth.hpp), the method's verdict its
+/// each body whose self-collision is handled (self_collision_active), the
+/// truth is whether the oracle finds some point of it strictly inside a tet
+/// of its own: any self-collision point of the inside set, with or without a
+/// true depth (oracle/self_depth.hpp); the method's verdict its
 /// self_collision_verdicts() (for point methods: it holds such a point).
+/// The neural detector's training label counts only points with a true
+/// depth (oracle/self_penetration.hpp); on finger_curl every self-collision
+/// point has one, so there the two truths coincide.
 /// self_frames = {frames, tp, fp, fn, tn, recall, precision, accuracy}; null
 /// without such bodies or oracle steps; recall (precision) null without
 /// positive truths (verdicts). A whole-body detector (`neural`,

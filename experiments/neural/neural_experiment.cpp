@@ -352,7 +352,15 @@ bool neural_results_match(const std::filesystem::path& neural_json, const Neural
     const auto meta = nlohmann::json::parse(read_file(neural_json));
     std::vector<std::string> presets;
     for (const auto& p : meta.at("presets")) presets.push_back(p.at("preset").get<std::string>());
-    return meta.at("seeds").get<std::vector<std::uint64_t>>() == wanted.seeds && presets == wanted.presets;
+    const neural::LearningSettings& l = wanted.learning;
+    bool same_codes = true;
+    for (const auto& p : meta.at("presets")) same_codes = same_codes && p.at("test_codes").get<int>() == wanted.test_codes;
+    return meta.at("seeds").get<std::vector<std::uint64_t>>() == wanted.seeds && presets == wanted.presets &&
+           same_codes && meta.at("bootstrap_labels").get<int>() == l.bootstrap_labels &&
+           meta.at("bootstrap_steps").get<int>() == l.bootstrap_steps && meta.at("rounds").get<int>() == l.rounds &&
+           meta.at("labels_per_round").get<int>() == l.labels_per_round &&
+           meta.at("steps_per_round").get<int>() == l.steps_per_round &&
+           meta.at("alm_margins").get<std::vector<double>>() == wanted.alm_margins;
   } catch (const std::exception&) {
     return false;  // missing, unreadable or not ours: run it again
   }

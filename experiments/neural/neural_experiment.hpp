@@ -46,9 +46,9 @@ NeuralExperimentSettings neural_experiment_defaults(bool quick);
 void run_neural_experiment(const NeuralExperimentSettings& settings);
 
 /// Whether `neural_json` is a finished experiment's neural.json with the
-/// seeds and presets of `wanted` (reproduce --resume keeps it then; a
-/// --quick experiment is redone by a full reproduce). False for a missing or
-/// unreadable file.
+/// seeds, presets, test codes, learning rounds and ALM margins of `wanted`
+/// (reproduce --resume keeps it then; a --quick experiment is redone by a
+/// full reproduce). False for a missing or unreadable file.
 bool neural_results_match(const std::filesystem::path& neural_json, const NeuralExperimentSettings& wanted);
 
 }  // namespace tcb

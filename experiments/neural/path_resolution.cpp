@@ -8,7 +8,7 @@
 
 #include "experiments/metrics/distribution.hpp"
 #include "experiments/neural/finger_labeller.hpp"
-#include "method/neural/mlp.hpp"
+#include "method/neural/model_file.hpp"
 #include "sim/io/atomic_file.hpp"
 #include "sim/io/input_error.hpp"
 #include "sim/latent/latent_path.hpp"
@@ -22,17 +22,15 @@ PathResolution resolve_path(const PathResolutionSettings& s) {
   } catch (const std::invalid_argument& e) {
     throw InputError("--preset", 0, e.what());
   }
-  neural::Mlp<double> net = [&] {
-    try {
-      return neural::Mlp<double>::load(s.model.string());
-    } catch (const std::exception& e) {
-      throw InputError(s.model.string(), 0, e.what());
-    }
-  }();
+  neural::ModelFile model = neural::read_model_file(s.model);
+  const neural::Mlp<double>& net = model.net;
   if (net.input_size() != finger->latent_size() || net.output_size() != 1)
     throw InputError(s.model.string(), 0,
                      fmt::format("the network takes {} inputs and gives {} outputs; {} needs {} inputs and one logit",
                                  net.input_size(), net.output_size(), s.preset, finger->latent_size()));
+  if (!model.preset().empty() && model.preset() != s.preset)
+    throw InputError(s.model.string(), 0,
+                     fmt::format("the network was trained for {}, not {} (--preset)", model.preset(), s.preset));
   const LatentPath path = read_latent_path_csv(s.path, finger->latent_size());
   FingerLabeller labeller(*finger);
   const neural::Constraint constraint = [&](const Eigen::VectorXd& z, Eigen::VectorXd& grad) {

@@ -32,7 +32,9 @@ Json world_json(const SceneDesc& scene, const World& world) {
                        {"vertices", b.x_m.size()},
                        {"tets", b.mesh->tet_count()},
                        {"passive", b.passive},
-                       {"latent", b.latent ? Json(b.latent->family) : Json(nullptr)},
+                       {"latent", b.latent ? Json{{"family", b.latent->family},
+                                                  {"model", b.latent->model_path.string()}}
+                                           : Json(nullptr)},
                        {"model", b.passive ? "none" : to_string(b.material.model)},
                        {"integrator", b.passive ? "none" : to_string(b.material.integrator)}});
   }

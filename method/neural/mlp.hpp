@@ -193,11 +193,23 @@ class Mlp {
     if (!j.contains("layers") || !j["layers"].is_array()) throw std::invalid_argument("\"layers\" must be an array");
     std::vector<int> sizes;
     for (const auto& n : j["layers"]) {
-      if (!n.is_number_integer()) throw std::invalid_argument("\"layers\" must hold integers");
+      if (!n.is_number_integer() || n.get<std::int64_t>() < 1 || n.get<std::int64_t>() > 1000000)
+        throw std::invalid_argument("\"layers\" must hold integers in [1, 1000000]");
       sizes.push_back(n.get<int>());
     }
+    if (sizes.size() < 2 || sizes.size() > 1000)
+      throw std::invalid_argument("\"layers\" needs 2 to 1000 sizes (input, hidden..., output)");
+    // The count the sizes imply, checked against the file before anything is
+    // allocated: a header claiming huge layers in a short file is refused, not
+    // allocated (each term is below 10^12 and there are fewer than 1000: no overflow).
+    std::uint64_t implied = 0;
+    for (std::size_t l = 0; l + 1 < sizes.size(); ++l)
+      implied += static_cast<std::uint64_t>(sizes[l]) * static_cast<std::uint64_t>(sizes[l + 1]) +
+                 static_cast<std::uint64_t>(sizes[l + 1]);
+    if (!j.contains("parameters") || !j["parameters"].is_array() || j["parameters"].size() != implied)
+      throw std::invalid_argument("\"parameters\" must be an array of " + std::to_string(implied) + " numbers");
     Mlp net(sizes, act == "tanh" ? Activation::Tanh : Activation::Celu, 0);
-    if (!j.contains("parameters") || !j["parameters"].is_array() || j["parameters"].size() != net.parameter_count())
+    if (j["parameters"].size() != net.parameter_count())
       throw std::invalid_argument("\"parameters\" must be an array of " + std::to_string(net.parameter_count()) + " numbers");
     Vec p(static_cast<Eigen::Index>(net.parameter_count()));
     Eigen::Index i = 0;

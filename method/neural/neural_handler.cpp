@@ -3,7 +3,10 @@
 #include <limits>
 #include <stdexcept>
 
+#include <fmt/format.h>
+
 #include "method/handler/work_units.hpp"
+#include "method/neural/model_file.hpp"
 #include "sim/io/input_error.hpp"
 
 namespace tcb {
@@ -22,16 +25,18 @@ void NeuralHandler::init(const World& world, const CollisionSettings&) {
       throw InputError("--method neural", 0, who + " names no latent_model: the neural method needs the network "
                                              "trained for its family (tcbench neural train)");
     const std::string path = body.latent->model_path.string();
-    try {
-      m_networks[b] = neural::Mlp<double>::load(path);
-    } catch (const std::exception& e) {
-      throw InputError(path, 0, e.what());
-    }
-    if (m_networks[b]->input_size() != body.latent->finger->latent_size() || m_networks[b]->output_size() != 1)
-      throw InputError(path, 0, "the network takes " + std::to_string(m_networks[b]->input_size()) + " inputs and gives " +
-                                    std::to_string(m_networks[b]->output_size()) + " outputs; " + who + "'s family '" +
-                                    body.latent->family + "' has a latent code of " +
-                                    std::to_string(body.latent->finger->latent_size()) + " and needs one logit");
+    neural::ModelFile model = neural::read_model_file(body.latent->model_path);
+    const int n = body.latent->finger->latent_size();
+    if (model.net.input_size() != n || model.net.output_size() != 1)
+      throw InputError(path, 0, fmt::format("the network takes {} inputs and gives {} outputs; {} (family {}) needs {} "
+                                            "inputs and one logit",
+                                            model.net.input_size(), model.net.output_size(), who, body.latent->family, n));
+    // Both fingers have 12 latent entries: only the file's record tells a
+    // network trained on the other mesh apart.
+    if (!model.preset().empty() && model.preset() != body.latent->family)
+      throw InputError(path, 0, fmt::format("the network was trained for {}, but {} is a {}", model.preset(), who,
+                                            body.latent->family));
+    m_networks[b] = std::move(model.net);
   }
   if (!any)
     throw InputError("--method neural", 0, "judges only latent-driven objects (a scene object with latent_path); "

@@ -836,16 +836,24 @@ def neural_compare(key, better, what):
     return rule
 
 
+def alm_interval(group):
+    """95 % Wilson interval of a strategy's resolved share, over its distinct codes (attempts / seeds)."""
+    resolved, attempted, _, seeds = group
+    codes = max(1, round(attempted / max(1, seeds)))
+    return statistics.wilson_interval(round(codes * resolved / max(1, attempted)), codes)
+
+
 def neural_alm(runs, ctx):
     """Collisions the ALM resolves (the oracle's verdict at its answer) with active against supervised
     networks, per preset and margin, with the distance moved: resolving more by moving further is shown."""
     groups = {}
     for results in neural.find(ctx.results.root):
         for r in results.alm:
-            g = groups.setdefault((r["preset"], r["margin"]), {}).setdefault(r["strategy"], [0, 0, []])
+            g = groups.setdefault((r["preset"], r["margin"]), {}).setdefault(r["strategy"], [0, 0, [], 0])
             g[0] += r["resolved"]
             g[1] += r["attempted"]
             g[2].append(r["median_distance_ratio"])
+            g[3] += 1  # seeds
     if not groups:
         return UNMEASURED, UNMEASURED
     texts, verdicts = [], []
@@ -857,12 +865,18 @@ def neural_alm(runs, ctx):
         texts.append(f"{preset} margin {margin:g}: active {int(a[0])}/{int(a[1])} ({ra:.0%}, distance "
                      f"{neural.mean(a[2]):.2f}x the reference) vs supervised {int(s[0])}/{int(s[1])} ({rs:.0%}, "
                      f"{neural.mean(s[2]):.2f}x)")
-        # Counts of codes: a difference counts when the 95 % Wilson intervals of the two shares do not overlap.
-        (alo, ahi), (slo, shi) = statistics.wilson_interval(int(a[0]), int(a[1])), statistics.wilson_interval(int(s[0]), int(s[1]))
+        # A difference counts when the 95 % Wilson intervals of the two shares do not overlap. Every seed
+        # resolves the same codes, so the seeds' attempts are not independent: the interval is taken over the
+        # distinct codes (attempts / seeds), with the pooled share.
+        (alo, ahi), (slo, shi) = alm_interval(a), alm_interval(s)
         verdicts.append(HOLDS if alo > shi else FAILS if ahi < slo else INCONCLUSIVE)
     if not verdicts:
         return UNMEASURED, UNMEASURED
-    verdict = verdicts[0] if len(set(verdicts)) == 1 else f"partly: holds at {verdicts.count(HOLDS)}/{len(verdicts)} margins"
+    if len(set(verdicts)) == 1:
+        verdict = verdicts[0]
+    else:
+        counts = ", ".join(f"{v} at {verdicts.count(v)}" for v in (HOLDS, FAILS, INCONCLUSIVE) if verdicts.count(v))
+        verdict = f"partly: {counts} of {len(verdicts)} margins"
     return "; ".join(texts), verdict
 
 
@@ -956,8 +970,9 @@ CLAIMS = [
           figure="neural", select=Select(), metrics=("resolved",), rule=neural_alm,
           ours=("resolved: the oracle finds no penetration at the ALM's code; the distance moved is shown beside "
                 "it, as a solver that moves further resolves more",
-                "the verdict per margin: the 95 % Wilson intervals of the resolved shares (codes pooled over seeds) "
-                "do not overlap; otherwise inconclusive")),
+                "the verdict per margin: the 95 % Wilson intervals of the resolved shares (pooled over seeds, the "
+                "interval over the distinct codes, since every seed resolves the same ones) do not overlap; "
+                "otherwise inconclusive")),
 ]
 
 

@@ -88,11 +88,13 @@ TEST_CASE("neural, approximate: its per-frame verdicts agree with brute_force's 
           "[handler][registry][neural]") {
   // Not an equality: the network is a learned approximation (about 0.9 of
   // held-out codes right, `tcbench neural experiment`). The committed model
-  // and path of experiments/scenes/finger_curl_small.toml; every 20th of 2,000
+  // and path of experiments/scenes/finger_curl.toml; every 20th of 2,000
   // steps. Measured when written: 94 of 100 frames agree.
   const std::filesystem::path scenes = std::filesystem::path(TCBENCH_DATA_DIR) / ".." / "experiments" / "scenes";
+  int ran = 0;
   for (const MethodInfo& method : method_registry()) {
     if (method.reports != MethodInfo::Reports::BodyVerdicts) continue;
+    ++ran;
     INFO("method " << method.name);
     test::TestScene scene = test::scene_of({{"finger", "finger:finger_small", Vec3::Zero(), true, true}});
     scene.world.objects[0].latent_path = "finger_curl_path.csv";
@@ -121,4 +123,5 @@ TEST_CASE("neural, approximate: its per-frame verdicts agree with brute_force's 
     CHECK(colliding <= 80);
     CHECK(agree >= 85);
   }
+  CHECK(ran == 1);  // neural is registered and was compared
 }

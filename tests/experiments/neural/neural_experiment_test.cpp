@@ -77,6 +77,12 @@ TEST_CASE("neural experiment: a toy run writes the learning curve, the ALM table
   other = s;
   other.presets = {"finger_small", "finger_large"};
   CHECK_FALSE(neural_results_match(out / "neural.json", other));
+  other = s;
+  other.learning.rounds = 3;
+  CHECK_FALSE(neural_results_match(out / "neural.json", other));
+  other = s;
+  other.test_codes = 41;
+  CHECK_FALSE(neural_results_match(out / "neural.json", other));
   CHECK_FALSE(neural_results_match(out / "missing.json", s));
   fs::remove_all(out);
   fs::remove_all(threaded);

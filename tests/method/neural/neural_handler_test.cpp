@@ -122,10 +122,26 @@ TEST_CASE("neural handler: scenes it cannot judge are bad input", "[neural]") {
     NeuralHandler handler;
     CHECK_THROWS_WITH(handler.init(world, CollisionSettings{}), Catch::Matchers::Contains("takes 5 inputs"));
   }
+  SECTION("a network trained for the other finger (both have 12 latent entries)") {
+    auto j = f.net.to_json();
+    j["trained"] = {{"preset", "finger_large"}};
+    std::ofstream(f.dir / "net.json") << j.dump();
+    World world = build_world(f.desc);
+    NeuralHandler handler;
+    CHECK_THROWS_WITH(handler.init(world, CollisionSettings{}),
+                      Catch::Matchers::Contains("trained for finger_large, but object 'finger' is a finger_small"));
+  }
   SECTION("a file that is no network") {
     std::ofstream(f.dir / "net.json") << "{\"format\": \"something else\"}";
     World world = build_world(f.desc);
     NeuralHandler handler;
     CHECK_THROWS_WITH(handler.init(world, CollisionSettings{}), Catch::Matchers::Contains("net.json"));
+  }
+  SECTION("a header that claims huge layers is refused before anything is allocated") {
+    std::ofstream(f.dir / "net.json")
+        << R"({"format": "tcbench-mlp-1", "activation": "tanh", "layers": [12, 100000, 100000, 1], "parameters": [0]})";
+    World world = build_world(f.desc);
+    NeuralHandler handler;
+    CHECK_THROWS_WITH(handler.init(world, CollisionSettings{}), Catch::Matchers::Contains("must be an array of 10001500001"));
   }
 }
