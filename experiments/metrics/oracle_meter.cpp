@@ -96,6 +96,29 @@ void OracleMeter::judge_self_frames(const StepContext& ctx) {
     const bool said = b < verdicts.size() && verdicts[b];
     if (truth[b]) (said ? m_frames_tp : m_frames_fn)++;
     else (said ? m_frames_fp : m_frames_tn)++;
+    if (ctx.handler.reports_points()) judge_self_parts(ctx, b);
+  }
+}
+
+void OracleMeter::judge_self_parts(const StepContext& ctx, std::size_t b) {
+  const TetMesh& mesh = *ctx.world.bodies[b].mesh;
+  if (part_count(mesh) < 2) return;
+  const std::size_t parts = part_count(mesh);
+  // A vertex lies in the parts of its tets (one on a boundary between parts lies in both).
+  const auto mark = [&](std::vector<char>& in, std::int32_t vertex) {
+    for (const std::int32_t* t = mesh.vertex_tets.begin(vertex); t != mesh.vertex_tets.end(vertex); ++t) {
+      const auto part = static_cast<std::size_t>(mesh.tet_part[static_cast<std::size_t>(*t)]);
+      if (part < parts) in[part] = 1;
+    }
+  };
+  std::vector<char> truth(parts, 0), said(parts, 0);
+  for (const OraclePoint& p : m_frame.inside)
+    if (p.object == p.other && static_cast<std::size_t>(p.object) == b) mark(truth, p.vertex);
+  for (const Contact& c : ctx.handler.contacts())
+    if (c.object == c.other && static_cast<std::size_t>(c.object) == b && !c.separated) mark(said, c.vertex);
+  for (std::size_t k = 0; k < parts; ++k) {
+    if (truth[k]) (said[k] ? m_parts_tp : m_parts_fn)++;
+    else (said[k] ? m_parts_fp : m_parts_tn)++;
   }
 }
 
@@ -142,6 +165,19 @@ void OracleMeter::summarize(Json& summary) const {
                               {"recall", share(m_frames_tp, m_frames_tp + m_frames_fn)},
                               {"precision", share(m_frames_tp, m_frames_tp + m_frames_fp)},
                               {"accuracy", share(m_frames_tp + m_frames_tn, frames)}};
+  }
+  const std::int64_t part_frames = m_parts_tp + m_parts_fp + m_parts_fn + m_parts_tn;
+  if (part_frames == 0) {
+    summary["self_parts"] = nullptr;
+  } else {
+    const auto share = [](std::int64_t a, std::int64_t n) { return n > 0 ? Json(static_cast<double>(a) / n) : Json(nullptr); };
+    summary["self_parts"] = {{"judged", part_frames},
+                             {"tp", m_parts_tp},
+                             {"fp", m_parts_fp},
+                             {"fn", m_parts_fn},
+                             {"tn", m_parts_tn},
+                             {"recall", share(m_parts_tp, m_parts_tp + m_parts_fn)},
+                             {"precision", share(m_parts_tp, m_parts_tp + m_parts_fp)}};
   }
   for (const std::string& reason : m_unmeasured) note_unmeasured(summary, reason);
 }

@@ -25,6 +25,14 @@
 /// The neural detector's training label counts only points with a true
 /// depth (oracle/self_penetration.hpp); on finger_curl every self-collision
 /// point has one, so there the two truths coincide.
+///
+/// Per part (summary self_parts), for point methods on bodies with parts
+/// (TetMesh::tet_part): each oracle frame and part is judged, the truth
+/// whether some self-collision point lies in the part (a vertex lies in the
+/// parts of its tets), the verdict whether the method holds such a point in
+/// it. {judged, tp, fp, fn, tn, recall, precision}; null without such
+/// bodies. A whole-object detector has no per-part verdict (the network has
+/// one output): null for it.
 /// self_frames = {frames, tp, fp, fn, tn, recall, precision, accuracy}; null
 /// without such bodies or oracle steps; recall (precision) null without
 /// positive truths (verdicts). A whole-body detector (`neural`,
@@ -53,6 +61,7 @@ class OracleMeter final : public Meter {
 
  private:
   void judge_self_frames(const StepContext& ctx);
+  void judge_self_parts(const StepContext& ctx, std::size_t body);
   OracleSchedule m_oracle, m_overlap;
   std::unique_ptr<SurfaceTrianglePairs> m_triangle_pairs;
   OracleFrame m_frame;      // this step's, handed on through StepContext
@@ -63,6 +72,7 @@ class OracleMeter final : public Meter {
   std::optional<double> m_overlap_max;
   std::int64_t m_oracle_steps = 0, m_overlap_steps = 0, m_overlap_invalid_steps = 0;
   std::int64_t m_frames_tp = 0, m_frames_fp = 0, m_frames_fn = 0, m_frames_tn = 0;
+  std::int64_t m_parts_tp = 0, m_parts_fp = 0, m_parts_fn = 0, m_parts_tn = 0;
   bool m_points_reported = true;
   std::set<std::string> m_unmeasured;  // a reason repeats on every step it holds
 };

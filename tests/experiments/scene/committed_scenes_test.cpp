@@ -75,6 +75,13 @@ TEST_CASE("finger_curl: the oracle judges neural and full per frame; neural has 
   CHECK(full["self_frames"]["tn"].get<int>() > 0);   // and not all the time
   CHECK(full["self_frames"]["accuracy"] == 1.0);     // full detection is exact here
   CHECK(full["recall_min"] == 1.0);
+  // Per part (7 bones): full holds a point in every part the oracle finds one in, and in no other.
+  REQUIRE(full["self_parts"].is_object());
+  CHECK(full["self_parts"]["judged"] == 60 * 7);
+  CHECK(full["self_parts"]["tp"].get<int>() > 0);
+  CHECK(full["self_parts"]["recall"] == 1.0);
+  CHECK(full["self_parts"]["precision"] == 1.0);
+  CHECK(neural["self_parts"].is_null());
   REQUIRE(neural["self_frames"].is_object());
   CHECK(neural["self_frames"]["frames"] == 60);
   CHECK(neural["self_frames"]["accuracy"].get<double>() >= 0.8);  // a learned approximation; 0.94 over the whole path
