@@ -1,11 +1,11 @@
 """The neural self-collision detector (seed 002): accuracy and false-negative rate on held-out codes against
 the labels spent, active against supervised learning (mean over seeds, min-max band), and the ALM's resolution
-by margin. Drawn from `tcbench neural experiment` results anywhere beneath the report's root; runs play no part.
+by margin (bars, with the distance moved over the reference distance). Drawn from `tcbench neural experiment` results anywhere beneath the report's root; runs play no part.
 """
 import math
 import os
 
-from .. import neural
+from .. import neural, statistics
 from ..context import Section, plt
 
 TITLE = "Neural self-collision detector: active vs supervised learning"
@@ -41,6 +41,36 @@ def alm_text(results):
     return "; ".join(parts)
 
 
+def draw_alm(ax, rows, preset):
+    """The ALM table as bars: per margin and strategy, the share of colliding codes resolved (pooled over seeds;
+    bars: 95 % Wilson interval over the distinct codes) and, on each bar, the median distance moved over the
+    oracle's reference distance."""
+    if not rows:
+        ax.set_axis_off()
+        ax.text(0.5, 0.5, "no ALM rows", ha="center", va="center", fontsize=8)
+        return
+    margins = sorted({r["margin"] for r in rows})
+    width = 0.38
+    for k, strategy in enumerate(("supervised", "active")):
+        for i, margin in enumerate(margins):
+            rs = [r for r in rows if r["strategy"] == strategy and r["margin"] == margin]
+            if not rs:
+                continue
+            resolved, attempted = sum(r["resolved"] for r in rs), sum(r["attempted"] for r in rs)
+            codes = max(1, round(attempted / len(rs)))
+            share = resolved / max(1, attempted)
+            lo, hi = statistics.wilson_interval(round(codes * share), codes)
+            x = i + (k - 0.5) * width
+            ax.bar(x, share, width, color=COLOURS[strategy], alpha=0.8, label=strategy if i == 0 else None)
+            ax.errorbar(x, share, yerr=[[max(0.0, share - lo)], [max(0.0, hi - share)]], color="0.2", lw=0.8, capsize=2)
+            ratio = neural.mean([r["median_distance_ratio"] for r in rs])
+            ax.text(x, min(share + 0.03, 0.97), f"{ratio:.2f}x", ha="center", va="bottom", fontsize=6)
+    ax.set_xticks(range(len(margins)), [f"{m:g}" for m in margins])
+    ax.set(ylim=(0, 1), xlabel="margin (logits)", ylabel="colliding codes resolved (oracle)")
+    ax.set_title(f"{preset}: ALM resolution (label: distance / reference)", fontsize=9)
+    ax.legend(fontsize=7)
+
+
 def draw(ctx, runs):
     found = neural.find(ctx.results.root)
     if not found:
@@ -49,8 +79,9 @@ def draw(ctx, runs):
     sections = []
     for number, results in enumerate(found):
         presets = neural.presets(results)
-        fig, axes = plt.subplots(len(presets), 2, figsize=(10, 3.6 * len(presets)), squeeze=False)
+        fig, axes = plt.subplots(len(presets), 3, figsize=(14, 3.6 * len(presets)), squeeze=False)
         for row, preset in zip(axes, presets):
+            draw_alm(row[2], [r for r in results.alm if r["preset"] == preset], preset)
             for ax, (key, name) in zip(row, (("accuracy", "accuracy"), ("fnr", "false-negative rate"))):
                 for strategy in ("supervised", "active"):
                     rows = [r for r in results.learning if r["preset"] == preset and r["strategy"] == strategy]
