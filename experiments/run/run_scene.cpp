@@ -5,10 +5,12 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 
 #include "baselines/registry.hpp"
 #include "experiments/metrics/meters.hpp"
 #include "experiments/run/provenance.hpp"
+#include "experiments/results/replay_file.hpp"
 #include "experiments/run/run_record.hpp"
 #include "experiments/run/thread_clock.hpp"
 #include "method/detection/spatial_hash.hpp"
@@ -114,6 +116,8 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
   for (const auto& m : meters)
     for (ColumnSpec& c : m->columns()) columns.push_back(std::move(c));
   RunRecord record(options.out_dir, columns, options.record_every, world, options.trajectory_every);
+  std::optional<ReplayWriter> replay;  // with the VTU frames: the viewer's replay (results/replay_file.hpp)
+  if (options.record_every > 0) replay.emplace(options.out_dir, world, options.record_every);
   const std::string started_at = utc_timestamp();
   const auto run_start = Clock::now();
   RunOutcome outcome{"ok", "", 0, 0.0};
@@ -146,6 +150,7 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
                     .budget = &budget,
                     .row = row};
     for (const auto& m : meters) m->before_dynamics(ctx);
+    if (replay) replay->record(ctx.step, world, *handler, report, ctx.oracle);
     const auto t_dynamics = Clock::now();
     world.step(scene.world.dt_s);
     ctx.dynamics_ms = ms_since(t_dynamics);
@@ -197,6 +202,9 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
   run["force_reference"] = setup.force_reference.label();
   run["trajectory"] = options.trajectory_every > 0 ? Json{{"every", options.trajectory_every}, {"file", "trajectory.bin"}}
                                                    : Json(nullptr);
+  run["replay"] = options.record_every > 0
+                      ? Json{{"every", options.record_every}, {"file", "replay.bin"}, {"manifest", "replay.json"}}
+                      : Json(nullptr);
   run["reference"] = options.reference_dir.empty() ? Json(nullptr) : Json(options.reference_dir.string());
   run["overrides"] = scene_overrides(options.overrides);
   run["command"] = options.argv;
@@ -209,6 +217,7 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
   run["unstable_reason"] = outcome.reason.empty() ? Json(nullptr) : Json(outcome.reason);
   run["world"] = world_json(scene, world);
   run["summary"] = summary;
+  if (replay) replay->finish();
   record.finish(run);
   return outcome;
 }
