@@ -48,22 +48,24 @@ def draw(ctx, runs):
     lines = curves(runs)
     if not lines:
         return ctx.missing(TITLE, "no scene of the sweeps declaring this figure was run at two or more sizes")
-    fig, ax = plt.subplots(figsize=(6, 4))
-    for legend, rs in lines.items():
+    fig, ax = plt.subplots(figsize=(8.5, 4))
+    for k, (legend, rs) in enumerate(lines.items()):
         pts = points(rs)
-        [line] = ax.plot([p[0] for p in pts], [p[1] for p in pts], "o-", label=f"{legend} p50")
+        # One colour per curve, its p99 dotted in the same colour.
+        [line] = ax.plot([p[0] for p in pts], [p[1] for p in pts], "o-", color=f"C{k % 10}", label=f"{legend} p50")
         for tets, p50, lo, hi, _, _ in pts:
             if lo is not None:
                 ax.errorbar(tets, p50, yerr=[[p50 - lo], [hi - p50]], color=line.get_color(), lw=0.8, capsize=2)
         if all(p[4] is not None for p in pts):
-            ax.plot([p[0] for p in pts], [p[4] for p in pts], "x:", label=f"{legend} p99")
+            ax.plot([p[0] for p in pts], [p[4] for p in pts], "x:", color=line.get_color(), label=f"{legend} p99")
     ax.set(xscale="log", yscale="log", xlabel="tetrahedra (objects that change shape)",
            ylabel="handling time per step (ms)")
     # Tick the sizes that were run: a log axis over less than a decade labels its minor ticks on top of each other.
     sizes = sorted({r.dynamic_tets() for rs in lines.values() for r in rs})
     ax.xaxis.set_minor_formatter(NullFormatter())
     ax.set_xticks(sizes, [str(n) for n in sizes])
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=7, loc="center left", bbox_to_anchor=(1.01, 0.5))
+    fig.tight_layout()
     scenes = ", ".join(sorted({r.scene for rs in lines.values() for r in rs}))
     return ctx.save(fig, FILE, f"{TITLE}: {scenes}",
                     "Collision handling time per step, its median (p50, solid) and p99 (dotted), against the "
