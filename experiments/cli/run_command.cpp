@@ -62,8 +62,11 @@ class RunCommand final : public Command {
                     "Override a scene key, e.g. scene.dt=0.002, or a method setting, e.g. method.every_nth.n=4 "
                     "(repeatable; `tcbench list methods` lists the settings)");
     app->add_option("--record", m_options.record_every,
-                    "Write a ParaView frame (DIR/frames/*.vtu, DIR/frames.pvd) every N steps")
+                    "Write a ParaView frame (DIR/frames/*.vtu, DIR/frames.pvd) and a replay frame (DIR/replay.bin, "
+                    "DIR/replay.json) every N steps")
         ->check(whole_number(1, std::int64_t{1} << 30));
+    app->add_flag("--record-debug", m_options.record_debug,
+                  "With --record: replay frames also hold every tet's box and the hash grid cells they occupy");
     app->add_option("--trajectory", m_options.trajectory_every,
                     "Write every body's state to DIR/trajectory.bin every N steps (float32), for runs that "
                     "take this one as --reference")
@@ -79,6 +82,8 @@ class RunCommand final : public Command {
   }
 
   int execute() override {
+    if (m_options.record_debug && m_options.record_every <= 0)
+      throw InputError("--record-debug", 0, "needs --record N (the debug buffers go into the replay's frames)");
     const auto path = resolve_scene(m_scene, default_scene_dirs());
     const SceneDesc scene = load_scene_file(path, m_options.overrides);
     if (m_steps >= 0) m_options.steps = m_steps;

@@ -1,5 +1,7 @@
 #include "experiments/results/replay_file.hpp"
 
+#include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <limits>
@@ -19,11 +21,13 @@ void ReplayWriter::put_position(const Vec3& p) {
   for (int k = 0; k < 3; ++k) put(static_cast<float>(p[k]));
 }
 
-ReplayWriter::ReplayWriter(const std::filesystem::path& dir, const World& world, int every)
-    : m_dir(dir), m_every(every), m_file(dir / "replay.bin") {
+ReplayWriter::ReplayWriter(const std::filesystem::path& dir, const World& world, int every,
+                           std::optional<double> debug_cell_size_m)
+    : m_dir(dir), m_every(every), m_cell_m(debug_cell_size_m), m_file(dir / "replay.bin") {
   using Json = nlohmann::ordered_json;
   Json bodies = Json::array();
   std::vector<std::uint32_t> triangles;
+  std::size_t first_tet = 0;
   for (std::size_t b = 0; b < world.bodies.size(); ++b) {
     const TetMesh& mesh = *world.bodies[b].mesh;
     const auto first_vertex = static_cast<std::uint32_t>(m_surface.size());
@@ -37,10 +41,13 @@ ReplayWriter::ReplayWriter(const std::filesystem::path& dir, const World& world,
       for (int k = 0; k < 3; ++k) triangles.push_back(index.at(t[k]));
     bodies.push_back({{"name", world.bodies[b].name},
                       {"surface_vertices", {first_vertex, m_surface.size() - first_vertex}},
-                      {"triangles", {first_triangle, triangles.size() / 3 - first_triangle}}});
+                      {"triangles", {first_triangle, triangles.size() / 3 - first_triangle}},
+                      {"tets", {first_tet, mesh.tet_count()}}});
+    first_tet += mesh.tet_count();
   }
   m_manifest["schema"] = "tcbench.replay/1";
   m_manifest["every"] = every;
+  m_manifest["debug"] = m_cell_m ? nlohmann::ordered_json{{"cell_size_m", *m_cell_m}} : nlohmann::ordered_json(nullptr);
   m_manifest["bodies"] = bodies;
   m_manifest["triangles"] = {{"offset", m_bytes}, {"count", triangles.size() / 3}};
   for (const std::uint32_t i : triangles) put(i);
@@ -100,8 +107,44 @@ void ReplayWriter::record(std::int64_t step, const World& world, const Collision
   } else {
     frame["oracle"] = nullptr;
   }
+  if (m_cell_m) put_debug(world, frame);
   frame["bytes"] = m_bytes - start;
   m_manifest["frames"].push_back(std::move(frame));
+}
+
+void ReplayWriter::put_debug(const World& world, nlohmann::ordered_json& frame) {
+  std::vector<std::array<std::int32_t, 3>> cells;
+  bool truncated = false;
+  std::uint64_t tets = 0;
+  const std::uint64_t aabbs_at = m_bytes;
+  const double inverse = 1.0 / *m_cell_m;
+  const auto cell = [&](double x) {
+    return static_cast<std::int32_t>(std::clamp(std::floor(x * inverse), -2147483648.0, 2147483647.0));
+  };
+  for (const Body& body : world.bodies) {
+    for (const Tet& t : body.mesh->tets) {
+      Vec3 lo = body.x_m[static_cast<std::size_t>(t[0])], hi = lo;
+      for (int k = 1; k < 4; ++k) {
+        lo = lo.cwiseMin(body.x_m[static_cast<std::size_t>(t[k])]);
+        hi = hi.cwiseMax(body.x_m[static_cast<std::size_t>(t[k])]);
+      }
+      put_position(lo);
+      put_position(hi);
+      ++tets;
+      for (std::int32_t i = cell(lo.x()); i <= cell(hi.x()) && !truncated; ++i)
+        for (std::int32_t j = cell(lo.y()); j <= cell(hi.y()) && !truncated; ++j)
+          for (std::int32_t k = cell(lo.z()); k <= cell(hi.z()) && !truncated; ++k) {
+            if (cells.size() >= 4 * kMaxDebugCells) truncated = true;  // before de-duplication
+            else cells.push_back({i, j, k});
+          }
+    }
+  }
+  std::sort(cells.begin(), cells.end());
+  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+  if (cells.size() > kMaxDebugCells) cells.resize(kMaxDebugCells), truncated = true;
+  frame["aabbs"] = {{"offset", aabbs_at}, {"count", tets}};
+  frame["cells"] = {{"offset", m_bytes}, {"count", cells.size()}, {"truncated", truncated}};
+  for (const auto& c : cells) put(c[0]), put(c[1]), put(c[2]);
 }
 
 void ReplayWriter::finish() {

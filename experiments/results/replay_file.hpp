@@ -20,6 +20,16 @@
 ///                      (only on frames where the oracle ran): int32 body,
 ///                      vertex, other; float32 depth_m (NaN: no true depth),
 ///                      position_m[3]
+/// With --record-debug (debug_cell_size_m set), per frame also:
+///          aabbs       float32 x 6 per tet of every body in order (min xyz,
+///                      max xyz; m): the tets' boxes at the frame's positions
+///          cells       int32 x 3 per grid cell some tet's box overlaps
+///                      (sorted, unique; cell = floor(x / cell_size_m)): the
+///                      cells the run's hash would fill at these positions.
+///                      Recomputed here, not read from the method: an
+///                      interruptible cycle may hold a hash of older
+///                      positions. At most kMaxDebugCells a frame
+///                      (cells_truncated says when more were cut).
 /// replay.json: {schema "tcbench.replay/1", every, bodies [{name,
 /// surface_vertices: [first, count], triangles: [first, count]}],
 /// triangles {offset, count}, surface_map {offset, count}, layouts (the
@@ -31,6 +41,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -45,11 +56,14 @@ namespace tcb {
 inline constexpr std::size_t kContactBytes = 48;
 inline constexpr std::size_t kOraclePointBytes = 28;
 inline constexpr std::uint8_t kNoForce = 255;
+inline constexpr std::size_t kMaxDebugCells = std::size_t{1} << 22;
 
 class ReplayWriter {
  public:
-  /// Writes the surface once; frames follow every `every` steps.
-  ReplayWriter(const std::filesystem::path& dir, const World& world, int every);
+  /// Writes the surface once; frames follow every `every` steps. With
+  /// debug_cell_size_m, frames also hold the tets' boxes and occupied cells.
+  ReplayWriter(const std::filesystem::path& dir, const World& world, int every,
+               std::optional<double> debug_cell_size_m = std::nullopt);
   /// Records the frame of `step` (1-based, as steps.csv counts) when due.
   void record(std::int64_t step, const World& world, const CollisionHandler& handler, const StepReport& report,
               const OracleFrame* oracle);
@@ -61,8 +75,11 @@ class ReplayWriter {
   void put(const T& value);
   void put_position(const Vec3& p);
 
+  void put_debug(const World& world, nlohmann::ordered_json& frame);
+
   std::filesystem::path m_dir;
   int m_every;
+  std::optional<double> m_cell_m;
   AtomicFile m_file;
   std::uint64_t m_bytes = 0;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> m_surface;  ///< (body, vertex) per surface vertex

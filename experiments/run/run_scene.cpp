@@ -117,7 +117,9 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
     for (ColumnSpec& c : m->columns()) columns.push_back(std::move(c));
   RunRecord record(options.out_dir, columns, options.record_every, world, options.trajectory_every);
   std::optional<ReplayWriter> replay;  // with the VTU frames: the viewer's replay (results/replay_file.hpp)
-  if (options.record_every > 0) replay.emplace(options.out_dir, world, options.record_every);
+  if (options.record_every > 0)
+    replay.emplace(options.out_dir, world, options.record_every,
+                   options.record_debug ? std::optional<double>(collision.detection.cell_size_m) : std::nullopt);
   const std::string started_at = utc_timestamp();
   const auto run_start = Clock::now();
   RunOutcome outcome{"ok", "", 0, 0.0};

@@ -44,7 +44,10 @@ struct RunOptions {
   /// under "overrides" (a method's settings are recorded resolved, under "settings").
   std::vector<std::string> overrides;
   std::vector<std::string> argv;  ///< the command line as given, recorded in run.json
-  int record_every = 0;           ///< write a VTU frame every N steps (0: none)
+  int record_every = 0;           ///< write a VTU frame and a replay frame every N steps (0: none)
+  /// Replay frames also hold the tets' boxes and the grid cells they occupy
+  /// (results/replay_file.hpp); needs record_every > 0.
+  bool record_debug = false;
   /// Write trajectory.bin every N steps (0: none), for runs that take this
   /// one as their --reference (results/trajectory_file.hpp).
   int trajectory_every = 0;

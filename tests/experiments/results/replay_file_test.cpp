@@ -8,6 +8,9 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -125,5 +128,58 @@ TEST_CASE("replay: the surface once, then per recorded step positions, contacts 
   }
   CHECK(contacts_seen > 0);   // the blocks rest on each other
   CHECK(oracle_frames == 2);  // steps 10 and 20
+  fs::remove_all(options.out_dir);
+}
+
+TEST_CASE("replay --record-debug: every tet's box and the grid cells the boxes overlap", "[replay]") {
+  const SceneDesc scene = load_scene_file(resolve_scene("two_blocks", default_scene_dirs()));
+  RunOptions options;
+  options.steps = 10;
+  options.record_every = 10;
+  options.record_debug = true;
+  options.trajectory_every = 1;
+  options.out_dir = fs::temp_directory_path() / ("tcbench_replay_debug_" + std::to_string(::getpid()));
+  fs::remove_all(options.out_dir);
+  REQUIRE(run_scene(scene, options).status == "ok");
+  const auto manifest = nlohmann::json::parse(read_file(options.out_dir / "replay.json"));
+  const std::string bytes = read_file(options.out_dir / "replay.bin");
+  const double cell_m = manifest["debug"]["cell_size_m"];
+  REQUIRE(cell_m > 0.0);
+  const World world = build_world(scene.world);
+  TrajectoryReader trajectory(options.out_dir / "trajectory.bin");
+  std::vector<TrajectoryFrame> states;
+  while (auto f = trajectory.next()) states.push_back(std::move(*f));
+  const auto& frame = manifest["frames"][0];
+  const TrajectoryFrame& before = states[8];  // after step 9: what step 10's handler saw
+  REQUIRE(before.step == 9);
+  std::size_t tets = 0;
+  for (const Body& b : world.bodies) tets += b.mesh->tet_count();
+  REQUIRE(frame["aabbs"]["count"] == tets);
+  const std::uint64_t cells_at = frame["cells"]["offset"], cell_count = frame["cells"]["count"];
+  CHECK_FALSE(frame["cells"]["truncated"].get<bool>());
+  std::vector<std::array<std::int32_t, 3>> cells;
+  for (std::uint64_t c = 0; c < cell_count; ++c)
+    cells.push_back({at<std::int32_t>(bytes, cells_at + 12 * c), at<std::int32_t>(bytes, cells_at + 12 * c + 4),
+                     at<std::int32_t>(bytes, cells_at + 12 * c + 8)});
+  CHECK(std::is_sorted(cells.begin(), cells.end()));
+  CHECK(std::adjacent_find(cells.begin(), cells.end()) == cells.end());
+  std::uint64_t rec = frame["aabbs"]["offset"];
+  for (std::size_t b = 0; b < world.bodies.size(); ++b)
+    for (const Tet& t : world.bodies[b].mesh->tets) {
+      Vec3 lo = before.x_m[b][static_cast<std::size_t>(t[0])], hi = lo;
+      for (int k = 1; k < 4; ++k)
+        lo = lo.cwiseMin(before.x_m[b][static_cast<std::size_t>(t[k])]), hi = hi.cwiseMax(before.x_m[b][static_cast<std::size_t>(t[k])]);
+      for (int k = 0; k < 3; ++k) {
+        CHECK(at<float>(bytes, rec + 4 * static_cast<std::uint64_t>(k)) == static_cast<float>(lo[k]));
+        CHECK(at<float>(bytes, rec + 12 + 4 * static_cast<std::uint64_t>(k)) == static_cast<float>(hi[k]));
+      }
+      // The cell of the box's centre is among the occupied ones.
+      const Vec3 centre = 0.5 * (lo + hi);
+      const std::array<std::int32_t, 3> c = {static_cast<std::int32_t>(std::floor(centre.x() / cell_m)),
+                                             static_cast<std::int32_t>(std::floor(centre.y() / cell_m)),
+                                             static_cast<std::int32_t>(std::floor(centre.z() / cell_m))};
+      CHECK(std::binary_search(cells.begin(), cells.end(), c));
+      rec += 24;
+    }
   fs::remove_all(options.out_dir);
 }
