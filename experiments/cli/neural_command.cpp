@@ -7,6 +7,7 @@
 
 #include "experiments/cli/command.hpp"
 #include "experiments/neural/code_labels.hpp"
+#include "experiments/neural/finger_labeller.hpp"
 #include "experiments/neural/neural_experiment.hpp"
 #include "experiments/neural/path_resolution.hpp"
 #include "experiments/neural/train_detector.hpp"
@@ -127,13 +128,7 @@ class NeuralCommand final : public Command {
     }
     if (m_alm->parsed()) return alm();
     NeuralExperimentSettings s = neural_experiment_defaults(m_quick);
-    for (const std::string& p : m_presets) {
-      try {
-        (void)finger_preset(p);
-      } catch (const std::invalid_argument& e) {
-        throw InputError("--preset", 0, e.what());
-      }
-    }
+    for (const std::string& p : m_presets) (void)finger_preset_option(p);
     if (!m_presets.empty()) s.presets = m_presets;
     if (m_seed_count > 0) {
       s.seeds.clear();
@@ -157,11 +152,7 @@ class NeuralCommand final : public Command {
   int train() {
     check_output_file(m_model, "--out");
     TrainDetectorSettings s = train_detector_defaults();
-    try {
-      (void)finger_preset(m_train_preset);
-    } catch (const std::invalid_argument& e) {
-      throw InputError("--preset", 0, e.what());
-    }
+    (void)finger_preset_option(m_train_preset);
     s.preset = m_train_preset;
     s.strategy = m_strategy == "active" ? neural::Strategy::Active : neural::Strategy::Supervised;
     s.seed = static_cast<std::uint64_t>(m_train_seed);

@@ -15,6 +15,20 @@ double ms_since(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
+// {count_key: judged, tp, fp, fn, tn, recall, precision[, accuracy]}: null
+// when nothing was judged; a share null when its denominator is 0.
+nlohmann::ordered_json confusion_json(const char* count_key, std::int64_t tp, std::int64_t fp, std::int64_t fn,
+                                      std::int64_t tn, bool with_accuracy) {
+  using Json = nlohmann::ordered_json;
+  const std::int64_t judged = tp + fp + fn + tn;
+  if (judged == 0) return nullptr;
+  const auto share = [](std::int64_t a, std::int64_t n) { return n > 0 ? Json(static_cast<double>(a) / n) : Json(nullptr); };
+  Json out = {{count_key, judged}, {"tp", tp}, {"fp", fp}, {"fn", fn}, {"tn", tn},
+              {"recall", share(tp, tp + fn)}, {"precision", share(tp, tp + fp)}};
+  if (with_accuracy) out["accuracy"] = share(tp + tn, judged);
+  return out;
+}
+
 }  // namespace
 
 OracleMeter::OracleMeter(const RunSetup& run) : m_oracle(run.oracle), m_overlap(run.overlap) {
@@ -152,33 +166,8 @@ void OracleMeter::summarize(Json& summary) const {
   summary["overlap_volume_max"] = m_overlap_max ? Json(*m_overlap_max) : Json(nullptr);
   summary["overlap_steps"] = m_overlap_steps;
   summary["overlap_invalid_steps"] = m_overlap_invalid_steps;
-  const std::int64_t frames = m_frames_tp + m_frames_fp + m_frames_fn + m_frames_tn;
-  if (frames == 0) {
-    summary["self_frames"] = nullptr;
-  } else {
-    const auto share = [](std::int64_t a, std::int64_t n) { return n > 0 ? Json(static_cast<double>(a) / n) : Json(nullptr); };
-    summary["self_frames"] = {{"frames", frames},
-                              {"tp", m_frames_tp},
-                              {"fp", m_frames_fp},
-                              {"fn", m_frames_fn},
-                              {"tn", m_frames_tn},
-                              {"recall", share(m_frames_tp, m_frames_tp + m_frames_fn)},
-                              {"precision", share(m_frames_tp, m_frames_tp + m_frames_fp)},
-                              {"accuracy", share(m_frames_tp + m_frames_tn, frames)}};
-  }
-  const std::int64_t part_frames = m_parts_tp + m_parts_fp + m_parts_fn + m_parts_tn;
-  if (part_frames == 0) {
-    summary["self_parts"] = nullptr;
-  } else {
-    const auto share = [](std::int64_t a, std::int64_t n) { return n > 0 ? Json(static_cast<double>(a) / n) : Json(nullptr); };
-    summary["self_parts"] = {{"judged", part_frames},
-                             {"tp", m_parts_tp},
-                             {"fp", m_parts_fp},
-                             {"fn", m_parts_fn},
-                             {"tn", m_parts_tn},
-                             {"recall", share(m_parts_tp, m_parts_tp + m_parts_fn)},
-                             {"precision", share(m_parts_tp, m_parts_tp + m_parts_fp)}};
-  }
+  summary["self_frames"] = confusion_json("frames", m_frames_tp, m_frames_fp, m_frames_fn, m_frames_tn, true);
+  summary["self_parts"] = confusion_json("judged", m_parts_tp, m_parts_fp, m_parts_fn, m_parts_tn, false);
   for (const std::string& reason : m_unmeasured) note_unmeasured(summary, reason);
 }
 

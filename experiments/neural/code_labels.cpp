@@ -14,12 +14,7 @@ namespace tcb {
 
 CodeLabelCounts label_uniform_codes(const std::string& preset, std::int64_t count, std::uint64_t seed,
                                     const std::filesystem::path& out) {
-  std::unique_ptr<SkinnedFinger> finger;
-  try {
-    finger = std::make_unique<SkinnedFinger>(finger_preset(preset));
-  } catch (const std::invalid_argument& e) {
-    throw InputError("--preset", 0, e.what());
-  }
+  const auto finger = std::make_unique<SkinnedFinger>(finger_preset_option(preset));
   const int n = finger->latent_size();
   FingerLabeller labeller(*finger);
   std::ostringstream csv;

@@ -1,6 +1,18 @@
 #include "experiments/neural/finger_labeller.hpp"
 
+#include <stdexcept>
+
+#include "sim/io/input_error.hpp"
+
 namespace tcb {
+
+SkinnedFingerDesc finger_preset_option(const std::string& name) {
+  try {
+    return finger_preset(name);
+  } catch (const std::invalid_argument& e) {
+    throw InputError("--preset", 0, e.what());
+  }
+}
 
 FingerLabeller::FingerLabeller(const SkinnedFinger& finger) : m_finger(&finger) {
   m_body.name = "finger";

@@ -14,6 +14,10 @@
 
 namespace tcb {
 
+/// finger_preset(name) for a preset a user named: InputError naming --preset
+/// (and listing the presets) for an unknown one.
+SkinnedFingerDesc finger_preset_option(const std::string& name);
+
 class FingerLabeller {
  public:
   explicit FingerLabeller(const SkinnedFinger& finger);

@@ -16,12 +16,7 @@
 namespace tcb {
 
 PathResolution resolve_path(const PathResolutionSettings& s) {
-  std::unique_ptr<SkinnedFinger> finger;
-  try {
-    finger = std::make_unique<SkinnedFinger>(finger_preset(s.preset));
-  } catch (const std::invalid_argument& e) {
-    throw InputError("--preset", 0, e.what());
-  }
+  const auto finger = std::make_unique<SkinnedFinger>(finger_preset_option(s.preset));
   neural::ModelFile model = neural::read_model_file(s.model);
   const neural::Mlp<double>& net = model.net;
   if (net.input_size() != finger->latent_size() || net.output_size() != 1)

@@ -1,18 +1,11 @@
 #include "sim/latent/latent_path.hpp"
 
-#include <algorithm>
-
 #include "sim/io/numeric_csv.hpp"
 
 namespace tcb {
 
 Eigen::VectorXd LatentPath::at(double t_s) const {
-  if (t_s <= time_s.front()) return code.front();
-  if (t_s >= time_s.back()) return code.back();
-  const auto hi = static_cast<std::size_t>(std::upper_bound(time_s.begin(), time_s.end(), t_s) - time_s.begin());
-  const std::size_t lo = hi - 1;
-  const double w = (t_s - time_s[lo]) / (time_s[hi] - time_s[lo]);
-  return (1.0 - w) * code[lo] + w * code[hi];
+  return sample_linear(time_s, code, t_s);
 }
 
 LatentPath read_latent_path_csv(const std::filesystem::path& path, int latent_size) {

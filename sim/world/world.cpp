@@ -72,19 +72,18 @@ void World::step(double dt_s) {
   for (Body& body : bodies) std::fill(body.contact_force_n.begin(), body.contact_force_n.end(), Vec3::Zero());
   for (Body& body : bodies) {
     if (!body.trajectory && !body.latent) continue;
-    std::vector<Vec3> next;
+    const auto move_to = [&](std::size_t i, const Vec3& next) {
+      driven_work_j -= body.applied_contact_force_n[i].dot(next - body.x_m[i]);
+      body.v_m_per_s[i] = (next - body.x_m[i]) / dt_s;
+      body.x_m[i] = next;
+    };
     if (body.latent) {
       body.latent_code = body.latent->path.at(time_s + dt_s);
-      next = body.latent->positions_m(body.latent_code);
+      const std::vector<Vec3> next = body.latent->positions_m(body.latent_code);
+      for (std::size_t i = 0; i < body.x_m.size(); ++i) move_to(i, next[i]);
     } else {
-      const Vec3 at = body.trajectory->at(time_s + dt_s);
-      next = body.shape_m;
-      for (Vec3& p : next) p += at;
-    }
-    for (std::size_t i = 0; i < body.x_m.size(); ++i) {
-      driven_work_j -= body.applied_contact_force_n[i].dot(next[i] - body.x_m[i]);
-      body.v_m_per_s[i] = (next[i] - body.x_m[i]) / dt_s;
-      body.x_m[i] = next[i];
+      const Vec3 at = body.trajectory->at(time_s + dt_s);  // no copy of the shape per step
+      for (std::size_t i = 0; i < body.x_m.size(); ++i) move_to(i, body.shape_m[i] + at);
     }
   }
   time_s += dt_s;
