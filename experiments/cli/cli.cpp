@@ -25,6 +25,8 @@ int run_cli(int argc, const char* const* argv) {
   commands.push_back(cli::make_list_command(app));
   commands.push_back(cli::make_mesh_command(app));
   commands.push_back(cli::make_neural_command(app));
+  commands.push_back(cli::make_view_command(app));
+  commands.push_back(cli::make_live_command(app));
   // CLI11 says "A subcommand is required" for a misspelt command too: say
   // which word it did not know, and which it knows.
   if (argc < 2 || argv[1][0] != '-') {

@@ -28,5 +28,7 @@ std::unique_ptr<Command> make_check_command(CLI::App& parent);
 std::unique_ptr<Command> make_compare_command(CLI::App& parent);
 std::unique_ptr<Command> make_report_command(CLI::App& parent);
 std::unique_ptr<Command> make_neural_command(CLI::App& parent);
+std::unique_ptr<Command> make_view_command(CLI::App& parent);
+std::unique_ptr<Command> make_live_command(CLI::App& parent);
 
 }  // namespace tcb::cli

@@ -125,6 +125,7 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
   RunOutcome outcome{"ok", "", 0, 0.0};
 
   for (std::int64_t s = 0; s < steps_total; ++s) {
+    if (options.before_step) options.before_step(world);
     Budget budget = options.budget.start();
     // The thread clocks are read inside the wall interval, so CPU time <= wall
     // time up to the clocks' resolution (handling_cpu_ms, timing_meter.hpp).
@@ -164,6 +165,7 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
     if (!ctx.unstable.empty()) outcome = {"unstable", ctx.unstable, s + 1, 0.0};
     if (options.on_step) options.on_step(s + 1, steps_total);
     if (outcome.status != "ok") break;
+    if (options.after_step && !options.after_step(ctx)) break;
   }
   outcome.wall_s = ms_since(run_start) / 1000.0;
 

@@ -60,6 +60,12 @@ struct RunOptions {
   std::function<void(std::int64_t, std::int64_t)> on_step;
   /// Called once per warning about the settings (also recorded in run.json).
   std::function<void(const std::string&)> on_warning;
+  /// tcbench live: called before each step's handling, outside every timed
+  /// interval (moves the mouse-driven probe to where the mouse put it).
+  std::function<void(World&)> before_step;
+  /// tcbench live: called after each step is measured and written; returning
+  /// false ends the run there, status ok (run.json: steps < steps_requested).
+  std::function<bool(const StepContext&)> after_step;
 };
 
 struct RunOutcome {

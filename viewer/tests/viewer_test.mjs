@@ -1,0 +1,137 @@
+// The viewer in a real browser: Debian's chromium, headless, WebGL in
+// software (SwiftShader), driven by playwright-core.
+//   node viewer_test.mjs TCBENCH RUN_DIR_A RUN_DIR_B [SCREENSHOT_DIR]
+// Serves the two recordings with `tcbench view`, and checks: the page loads
+// without console errors, playing advances the frame counter, each overlay
+// and the colouring change the rendered pixels, side by side shows two
+// canvases, the server refuses what it must, and Ctrl-C stops it cleanly.
+// Exit 77 (ctest: skipped) with a message when no browser can start.
+import { spawn, spawnSync } from 'node:child_process';
+import { existsSync, mkdtempSync, mkdirSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { chromium } from 'playwright-core';
+
+const [tcbench, runA, runB, shots] = process.argv.slice(2);
+const failures = [];
+const check = (ok, what) => { console.log(`${ok ? 'ok  ' : 'FAIL'} ${what}`); if (!ok) failures.push(what); };
+
+export function startServer(binary, args) {
+  const child = spawn(binary, args, { stdio: ['ignore', 'pipe', 'pipe'] });
+  let out = '';
+  let err = '';
+  child.stderr.on('data', (d) => { err += d; });
+  const url = new Promise((resolve, reject) => {
+    child.stdout.on('data', (d) => {
+      out += d;
+      const m = out.match(/http:\/\/127\.0\.0\.1:\d+\//);
+      if (m) resolve(m[0]);
+    });
+    child.on('exit', (code) => reject(new Error(`tcbench exited ${code} before listening: ${err}`)));
+  });
+  const exited = new Promise((resolve) => child.on('exit', (code, signal) => resolve({ code, signal, out: () => out, err: () => err })));
+  return { child, url, exited };
+}
+
+export async function launchBrowser() {
+  const executablePath = process.env.TCBENCH_CHROMIUM ?? '/usr/bin/chromium';
+  if (!existsSync(executablePath)) return { skip: `no browser at ${executablePath}` };
+  try {
+    const browser = await chromium.launch({
+      executablePath,
+      headless: true,
+      args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--disable-quic', '--no-first-run',
+        '--disable-background-networking', '--disable-component-update', '--disable-sync'],
+    });
+    return { browser };
+  } catch (e) {
+    return { skip: `chromium did not start: ${e.message.split('\n')[0]}` };
+  }
+}
+
+async function pixels(page) {
+  return page.locator('#views').screenshot();
+}
+
+async function main() {
+  // Bad input first: a directory with no replay is exit 2, naming it.
+  const empty = mkdtempSync(join(tmpdir(), 'tcbench-view-'));
+  const bad = spawnSync(tcbench, ['view', empty, '--port', '0'], { encoding: 'utf8' });
+  check(bad.status === 2 && bad.stderr.includes(empty) && bad.stderr.includes('replay.json'),
+    `a directory without a replay is exit 2 naming it (got ${bad.status}: ${bad.stderr.trim()})`);
+
+  const launched = await launchBrowser();
+  if (launched.skip) { console.log(`SKIP viewer browser test: ${launched.skip}`); process.exit(77); }
+  const { browser } = launched;
+  const server = startServer(tcbench, ['view', runA, runB, '--port', '0']);
+  const url = await server.url;
+  try {
+    const refused = await fetch(`${url}run/7/replay.json`);
+    check(refused.status === 404, `a run index that does not exist is 404 (got ${refused.status})`);
+    const outside = await fetch(`${url}run/0/..%2F..%2Fetc%2Fpasswd`);
+    check(outside.status === 404, `a file outside the run's whitelist is 404 (got ${outside.status})`);
+    const steps = await fetch(`${url}run/0/steps.csv`);
+    check(steps.ok && (await steps.text()).startsWith('step,'), 'steps.csv is served');
+
+    const page = await browser.newPage({ viewport: { width: 1400, height: 900 } });
+    const consoleErrors = [];
+    page.on('console', (m) => { if (m.type() === 'error') consoleErrors.push(m.text()); });
+    page.on('pageerror', (e) => consoleErrors.push(String(e)));
+    await page.goto(url);
+    await page.waitForFunction(() => window.tcbench && (window.tcbench.ready || window.tcbench.errors.length > 0), null, { timeout: 60000 });
+    const errors = await page.evaluate(() => window.tcbench.errors);
+    check(errors.length === 0, `the page reports no error (${errors.join('; ')})`);
+    check(await page.locator('#views canvas').count() === 2, 'side by side: two canvases');
+
+    const before = await page.evaluate(() => window.tcbench.frame);
+    await page.click('#play');
+    await page.waitForFunction((f) => window.tcbench.frame > f, before, { timeout: 20000 }).catch(() => {});
+    const after = await page.evaluate(() => window.tcbench.frame);
+    await page.click('#play');
+    check(after > before, `playing advances the frame counter (${before} -> ${after})`);
+    const counter = await page.textContent('#counter');
+    check(/^frame \d+ \/ \d+, step \d+/.test(counter), `the counter reads "${counter}"`);
+
+    // A frame where both runs hold contacts and the oracle ran, so every
+    // overlay has something to draw.
+    const target = await page.evaluate(() => {
+      const [a] = window.tcbench.runs;
+      const i = a.frames.findIndex((f) => f.contacts.length > 0 && f.oracle && f.oracle.length > 0);
+      return i;
+    });
+    check(target >= 0, 'the recording has a frame with contacts and oracle points');
+    await page.evaluate((i) => { document.getElementById('scrub').value = i; document.getElementById('scrub').dispatchEvent(new Event('input')); }, Math.max(target, 0));
+    for (const [name, key] of [['wireframe', 'w'], ['boxes', 'b'], ['grid', 'g'], ['fourViews', 'v'], ['debug overlays', 'Backspace']]) {
+      const a = await pixels(page);
+      await page.locator('body').press(key);
+      const b = await pixels(page);
+      check(!a.equals(b), `toggling ${name} (${key}) changes the rendered pixels`);
+      await page.locator('body').press(key);
+      const c = await pixels(page);
+      check(!c.equals(b), `toggling ${name} back changes them again`);
+    }
+    const a = await pixels(page);
+    await page.selectOption('#colour-by', 'oracle');
+    const b = await pixels(page);
+    check(!a.equals(b), "colouring points by the oracle's verdict changes the pixels");
+    const verdicts = await page.evaluate(() => window.tcbench.views[0].stats.verdicts);
+    check(Object.keys(verdicts).some((k) => ['correct', 'missed', 'false'].includes(k)), `points are judged: ${JSON.stringify(verdicts)}`);
+
+    if (shots) {
+      mkdirSync(shots, { recursive: true });
+      await page.locator('body').press('b');
+      await page.screenshot({ path: join(shots, 'viewer.png') });
+      await page.locator('body').press('b');
+    }
+    check(consoleErrors.length === 0, `no console errors (${consoleErrors.join('; ')})`);
+  } finally {
+    await browser.close();
+    server.child.kill('SIGINT');
+    const end = await server.exited;
+    check(end.code === 0 && end.out().includes('stopped'), `Ctrl-C stops the server cleanly (exit ${end.code}, signal ${end.signal})`);
+  }
+  if (failures.length) { console.log(`${failures.length} check(s) failed`); process.exit(1); }
+  console.log('all viewer checks passed');
+}
+
+if (import.meta.url === `file://${process.argv[1]}`) main().catch((e) => { console.error(e); process.exit(1); });
