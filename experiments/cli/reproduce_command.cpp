@@ -1,7 +1,8 @@
 // tcbench reproduce [--quick] [--out DIR]: the paper's experiment set, then
 // the report. The set is the sweep files in experiments/sweeps/paper/, run one
 // after the other with one job (wall-clock budgets need a quiet machine), each
-// into DIR/<sweep name>/; then the neural experiment into DIR/7_neural; then `tcbench report DIR`; then, for full-length
+// into DIR/<sweep name>/; then the neural experiment into DIR/7_neural; then the viewer's screenshot of
+// the stack (DIR/viewer/); then `tcbench report DIR`; then, for full-length
 // runs, `tcbench check experiments/thresholds/paper.toml DIR` (also written to
 // DIR/check.txt): the claims the project holds itself to at the paper's
 // lengths. --quick runs are too short for them and are not checked.
@@ -16,6 +17,7 @@
 #include "experiments/run/thread_clock.hpp"
 #include "experiments/cli/command.hpp"
 #include "experiments/cli/report_runner.hpp"
+#include "experiments/cli/screenshot_runner.hpp"
 #include "experiments/neural/neural_experiment.hpp"
 #include "experiments/run/provenance.hpp"
 #include "experiments/sweep/sweep_runner.hpp"
@@ -33,7 +35,8 @@ class ReproduceCommand final : public Command {
     app->footer(
         "Runs every sweep in experiments/sweeps/paper/ (about two hours on 2 cores, most of it the stack: both\n"
         "response modes and five jittered seeds; --quick: shorter runs, fewer seeds, about 20 min), then\n"
-        "the neural detector's experiment (`tcbench neural experiment`, into DIR/7_neural), then\n"
+        "the neural detector's experiment (`tcbench neural experiment`, into DIR/7_neural), then the viewer's\n"
+        "screenshot of the stack (full beside interruptible, DIR/viewer/; said and skipped without a browser), then\n"
         "`tcbench report DIR` (DIR/report/index.html), then (not with --quick) checks\n"
         "experiments/thresholds/paper.toml against the runs (DIR/check.txt).\n"
         "Exit status: 0 all runs ok and all checks pass; 1 some run unstable or failed, or a check failed (the\n"
@@ -114,6 +117,8 @@ class ReproduceCommand final : public Command {
       std::cerr << fmt::format("neural experiment (seed 002): {}\n", neural.out.string());
       run_neural_experiment(neural);
     }
+    // The viewer's picture of the stack for the report (not fatal when it cannot be made).
+    make_viewer_screenshot(m_out, m_options.executable);
     const int report = run_report(m_out);
     if (!m_options.quick) {
       const std::vector<CheckRow> rows = check_thresholds(thresholds, m_out);

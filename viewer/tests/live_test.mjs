@@ -9,7 +9,7 @@
 import { spawnSync } from 'node:child_process';
 import { existsSync, readFileSync, rmSync } from 'node:fs';
 import { join } from 'node:path';
-import { startServer, launchBrowser } from './viewer_test.mjs';
+import { startServer, launchBrowser } from '../browser.mjs';
 
 const [tcbench, out, shot] = process.argv.slice(2);
 const failures = [];

@@ -6,48 +6,15 @@
 // and the colouring change the rendered pixels, side by side shows two
 // canvases, the server refuses what it must, and Ctrl-C stops it cleanly.
 // Exit 77 (ctest: skipped) with a message when no browser can start.
-import { spawn, spawnSync } from 'node:child_process';
-import { existsSync, mkdtempSync, mkdirSync } from 'node:fs';
+import { spawnSync } from 'node:child_process';
+import { mkdtempSync, mkdirSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { chromium } from 'playwright-core';
+import { startServer, launchBrowser } from '../browser.mjs';
 
 const [tcbench, runA, runB, shots] = process.argv.slice(2);
 const failures = [];
 const check = (ok, what) => { console.log(`${ok ? 'ok  ' : 'FAIL'} ${what}`); if (!ok) failures.push(what); };
-
-export function startServer(binary, args) {
-  const child = spawn(binary, args, { stdio: ['ignore', 'pipe', 'pipe'] });
-  let out = '';
-  let err = '';
-  child.stderr.on('data', (d) => { err += d; });
-  const url = new Promise((resolve, reject) => {
-    child.stdout.on('data', (d) => {
-      out += d;
-      const m = out.match(/http:\/\/127\.0\.0\.1:\d+\//);
-      if (m) resolve(m[0]);
-    });
-    child.on('exit', (code) => reject(new Error(`tcbench exited ${code} before listening: ${err}`)));
-  });
-  const exited = new Promise((resolve) => child.on('exit', (code, signal) => resolve({ code, signal, out: () => out, err: () => err })));
-  return { child, url, exited };
-}
-
-export async function launchBrowser() {
-  const executablePath = process.env.TCBENCH_CHROMIUM ?? '/usr/bin/chromium';
-  if (!existsSync(executablePath)) return { skip: `no browser at ${executablePath}` };
-  try {
-    const browser = await chromium.launch({
-      executablePath,
-      headless: true,
-      args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--disable-quic', '--no-first-run',
-        '--disable-background-networking', '--disable-component-update', '--disable-sync'],
-    });
-    return { browser };
-  } catch (e) {
-    return { skip: `chromium did not start: ${e.message.split('\n')[0]}` };
-  }
-}
 
 async function pixels(page) {
   return page.locator('#views').screenshot();
@@ -134,4 +101,4 @@ async function main() {
   console.log('all viewer checks passed');
 }
 
-if (import.meta.url === `file://${process.argv[1]}`) main().catch((e) => { console.error(e); process.exit(1); });
+main().catch((e) => { console.error(e); process.exit(1); });
