@@ -4,7 +4,7 @@
 
 const RUN_COLOURS = ['#1f77b4', '#ff7f0e'];
 const PANELS = [
-  { title: 'handling time (ms) against the budget (dashed)', series: (c) => c.handling_ms, extra: (c) => c.budget_ms },
+  { title: 'handling time (ms) against the budget (dashed)', series: (c) => c.handling_ms, extra: (c) => c.budget_ms, robust: true },
   { title: 'recall (oracle frames)', series: (c) => c.recall, fixed: [0, 1] },
   { title: 'max depth (mm)', series: (c) => c.max_depth && c.max_depth.map((x) => x * 1e3) },
   { title: 'kinetic energy (J)', series: (c) => c.kinetic_energy },
@@ -82,11 +82,21 @@ export class StepPlot {
           if (s) for (const v of s) if (Number.isFinite(v)) values.push(v);
         }
       }
-      let [lo, hi] = panel.fixed ?? [Math.min(0, ...values), Math.max(...values)];
+      // No spread of the values into Math.max: a long run has more steps than a call may take arguments.
+      const largest = values.reduce((a, v) => Math.max(a, v), -Infinity);
+      let [lo, hi] = panel.fixed ?? [values.reduce((a, v) => Math.min(a, v), 0), largest];
+      // One slow step (a page fault, a preemption) would flatten every other
+      // step of a time series: scale to the 99th percentile and say so.
+      let clipped = 0;
+      if (panel.robust && values.length > 100) {
+        const sorted = Float64Array.from(values).sort();
+        const p99 = sorted[Math.floor(0.99 * (sorted.length - 1))] * 1.3;
+        if (p99 < hi) { clipped = values.filter((v) => v > p99).length; hi = p99; }
+      }
       if (!Number.isFinite(hi) || hi <= lo) hi = lo + 1;
       const y = (v) => bottom - (v - lo) / (hi - lo) * (bottom - top);
       g.fillStyle = '#333';
-      g.fillText(panel.title, this.left, top - 3);
+      g.fillText(clipped ? `${panel.title}; ${clipped} steps above the axis, largest ${largest.toPrecision(3)}` : panel.title, this.left, top - 3);
       g.fillText(hi.toPrecision(3), 2, top + 8);
       g.fillText(lo.toPrecision(3), 2, bottom);
       g.strokeStyle = '#ccc';
@@ -105,7 +115,8 @@ export class StepPlot {
           let measured = 0;
           for (let k = 0; k < steps.length; ++k) {
             if (!Number.isFinite(s[k])) continue;
-            if (pen) g.lineTo(x(steps[k]), y(s[k])); else g.moveTo(x(steps[k]), y(s[k]));
+            const v = Math.min(s[k], hi);
+            if (pen) g.lineTo(x(steps[k]), y(v)); else g.moveTo(x(steps[k]), y(v));
             pen = true;
             ++measured;
           }
