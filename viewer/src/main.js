@@ -1,6 +1,6 @@
 // The viewer page: plays one or two recorded runs in lockstep (tcbench view),
 // with seed 001's key map, overlays and a synchronized plot.
-import { loadRun } from './replay.js';
+import { loadRun, FORCE_NAMES } from './replay.js';
 import { RunView, FORCE_COLOURS, VERDICT_COLOURS } from './run_view.js';
 import { StepPlot } from './plot.js';
 import { startLive } from './live.js';
@@ -164,6 +164,20 @@ async function main() {
     box.parentElement.title = debug ? '' : 'recorded without --record-debug';
   }
   state.plot = new StepPlot($('plot'), (step) => setFrame(frameAtStep(state.runs[0], step)));
+  // Picking: a click on a point says what the method and the oracle said of it.
+  state.views.forEach((view, r) => {
+    view.renderer.domElement.addEventListener('click', (event) => {
+      const rect = event.target.getBoundingClientRect();
+      const p = view.pick(event.clientX - rect.left, event.clientY - rect.top);
+      state.picked = p;
+      if (!p) return;
+      const body = state.runs[r].bodies[p.body]?.name ?? p.body;
+      const mm = (x) => (Number.isFinite(x) ? `${(x * 1e3).toFixed(3)} mm` : 'none');
+      $('picked').textContent = `${state.runs[r].name}: vertex ${p.vertex} of ${body}`
+        + (p.method ? `, inside ${state.runs[r].bodies[p.other]?.name ?? p.other} (tet ${p.tet}), depth ${mm(p.depth)}, force ${FORCE_NAMES[p.force]}` : ', not held by the method')
+        + (p.verdict ? `; oracle: ${p.truth ? `inside, true depth ${mm(p.trueDepth)}` : 'outside'} (${p.verdict})` : '; no oracle on this frame');
+    });
+  });
   $('scrub').max = state.runs[0].frames.length - 1;
   bindControls();
   legend();

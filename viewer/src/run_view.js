@@ -143,6 +143,7 @@ export class RunView {
       }
     });
     this.stats = { points: judged.length, verdicts, oracle: !!frame.oracle };
+    this.judged = judged;
     const setPoints = (object, positions, colours) => {
       object.geometry.dispose();
       object.geometry = new THREE.BufferGeometry();
@@ -175,6 +176,24 @@ export class RunView {
       setPoints(this.grid, lines, null);
     }
     this.render();
+  }
+
+  // Seed 001's picking: the point drawn nearest the cursor (within 8 px) at
+  // canvas pixel (x, y), or null. Screen distance, so a point inside a body
+  // is found where it is drawn.
+  pick(x, y) {
+    if (!this.judged || !this.overlays.points || this.overlays.fourViews) return null;
+    const width = this.renderer.domElement.clientWidth;
+    const height = this.renderer.domElement.clientHeight;
+    let best = null;
+    let bestDistance = 8;
+    const v = new THREE.Vector3();
+    for (const p of this.judged) {
+      v.set(...p.position).project(this.camera);
+      const distance = Math.hypot((v.x + 1) / 2 * width - x, (1 - v.y) / 2 * height - y);
+      if (distance < bestDistance) { best = p; bestDistance = distance; }
+    }
+    return best;
   }
 
   resize() {

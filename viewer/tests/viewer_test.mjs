@@ -84,6 +84,24 @@ async function main() {
     const verdicts = await page.evaluate(() => window.tcbench.views[0].stats.verdicts);
     check(Object.keys(verdicts).some((k) => ['correct', 'missed', 'false'].includes(k)), `points are judged: ${JSON.stringify(verdicts)}`);
 
+    // Picking: a click on a drawn point names it and what the oracle said.
+    await page.selectOption('#colour-by', 'force');
+    const spot = await page.evaluate(() => {
+      const view = window.tcbench.views[0];
+      const p = view.judged[0];
+      const c = view.renderer.domElement;
+      const r = c.getBoundingClientRect();
+      const v = { x: p.position[0], y: p.position[1], z: p.position[2] };
+      const w = c.clientWidth;
+      const h = c.clientHeight;
+      // The same projection the view uses.
+      const q = new view.camera.position.constructor(v.x, v.y, v.z).project(view.camera);
+      return { x: r.left + (q.x + 1) / 2 * w, y: r.top + (1 - q.y) / 2 * h, vertex: p.vertex };
+    });
+    await page.mouse.click(spot.x, spot.y);
+    const picked = await page.textContent('#picked');
+    check(/vertex \d+ of \w+/.test(picked) && picked.includes('oracle'), `clicking a point picks it: "${picked}"`);
+
     if (shots) {
       mkdirSync(shots, { recursive: true });
       await page.locator('body').press('b');
