@@ -52,8 +52,24 @@ class ViewerFigureTest(unittest.TestCase):
         self.record(status="ok", screenshot="gone.png", reason="")
         self.assertIn("gone.png is missing", self.draw().missing)
 
-    def test_results_reproduce_did_not_make_get_nothing(self):
+    def test_results_without_screenshot_or_recording_get_nothing(self):
         self.assertEqual(self.draw(), [])
+
+    def test_every_recorded_run_gets_its_command(self):
+        class Run:
+            def __init__(self, name, directory):
+                self.name, self.dir = name, directory
+        recorded = os.path.join(self.root, "sweep", "a")
+        os.makedirs(recorded)
+        open(os.path.join(recorded, "replay.json"), "w").close()
+        plain = os.path.join(self.root, "sweep", "b")
+        os.makedirs(plain)
+        sections = viewer.draw(Context(Results(self.root), os.path.join(self.root, "report")),
+                               [Run("sweep/a", recorded), Run("sweep/b", plain)])
+        self.assertEqual(len(sections), 1)
+        self.assertIn(f"sweep/a: tcbench view {recorded}", sections[0].caption)
+        self.assertNotIn("sweep/b", sections[0].caption)
+        self.assertIn("1 recorded run open", sections[0].caption)
 
 
 if __name__ == "__main__":
