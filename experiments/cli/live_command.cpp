@@ -8,6 +8,7 @@
 #include <mutex>
 #include <thread>
 
+#include "baselines/registry.hpp"
 #include "experiments/cli/command.hpp"
 #include "experiments/cli/whole_number.hpp"
 #include "experiments/run/run_scene.hpp"
@@ -45,7 +46,7 @@ class LiveCommand final : public Command {
     app = parent.add_subcommand(
         "live",
         "Run a scene live in the browser: the simulation runs in real time in its own thread, the page at the "
-        "printed address\nshows it, and the mouse drives the scene's probe (drag: the view's plane; wheel: depth). "
+        "printed address\nshows it, and the mouse drives the scene's probe (drag: x and y; wheel: z). "
         "The probe's contact force,\nthe loop's rate and its budget overshoot are drawn live. Ctrl-C stops; the "
         "run's files and the probe's path\n(probe_path.csv, replayable with `tcbench run SCENE --set "
         "object.PROBE.trajectory=FILE`) are written to --out.\nExit status: 0 stopped cleanly; 1 the run went "
@@ -83,6 +84,7 @@ class LiveCommand final : public Command {
       m_options.budget = *spec;
       budget_ms = spec->value;
     }
+    find_method(m_options.method);  // an unknown method is exit 2 now, not after the address is printed
     const std::filesystem::path viewer = viewer_directory(m_viewer);
     m_options.out_dir = m_out.empty() ? std::filesystem::path("results/live") / (scene.name + "-" + m_options.method)
                                       : std::filesystem::path(m_out);
@@ -159,6 +161,13 @@ class LiveCommand final : public Command {
                   });
             });
             server.Post("/live/probe", [&](const httplib::Request& request, httplib::Response& response) {
+              // JSON only: a page of another origin cannot send that without a
+              // preflight, which this server never grants, so it cannot move the probe.
+              if (request.get_header_value("Content-Type").rfind("application/json", 0) != 0) {
+                response.status = 415;
+                response.set_content("tcbench live: send the target as Content-Type: application/json\n", "text/plain");
+                return;
+              }
               const ProbeMessage message = parse_probe_message(request.body);
               if (!message.position_m) {
                 response.status = 400;

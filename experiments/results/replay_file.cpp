@@ -67,7 +67,8 @@ ReplayWriter::ReplayWriter(const std::filesystem::path& dir, const World& world,
        {{"bytes", kOraclePointBytes},
         {"fields",
          {{"body", 0, "int32"}, {"vertex", 4, "int32"}, {"other", 8, "int32"}, {"depth_m", 12, "float32"},
-          {"position_m", 16, "float32x3"}}}}}};
+          {"position_m", 16, "float32x3"}}}}},
+      {"boundary_point", {{"bytes", 8}, {"fields", {{"body", 0, "int32"}, {"vertex", 4, "int32"}}}}}};
   m_manifest["frames"] = Json::array();
 }
 
@@ -104,8 +105,13 @@ void ReplayWriter::record(std::int64_t step, const World& world, const Collision
       put(static_cast<float>(p.depth_m));
       put_position(world.bodies[static_cast<std::size_t>(p.object)].x_m[static_cast<std::size_t>(p.vertex)]);
     }
+    // Touching points: the metrics count a method's point there neither
+    // right nor wrong (oracle_comparison.cpp), and so must the viewer.
+    frame["boundary"] = {{"offset", m_bytes}, {"count", oracle->boundary.size()}};
+    for (const auto& [object, vertex] : oracle->boundary) put(object), put(vertex);
   } else {
     frame["oracle"] = nullptr;
+    frame["boundary"] = nullptr;
   }
   if (m_cell_m) put_debug(world, frame);
   frame["bytes"] = m_bytes - start;

@@ -20,6 +20,10 @@
 ///                      (only on frames where the oracle ran): int32 body,
 ///                      vertex, other; float32 depth_m (NaN: no true depth),
 ///                      position_m[3]
+///          boundary    int32 x 2 (body, vertex) per point the oracle finds
+///                      exactly on another body's surface and inside none
+///                      (same frames): touching, counted neither way by
+///                      recall and precision
 /// With --record-debug (debug_cell_size_m set), per frame also:
 ///          aabbs       float32 x 6 per tet of every body in order (min xyz,
 ///                      max xyz; m): the tets' boxes at the frame's positions
@@ -35,7 +39,7 @@
 /// triangles {offset, count}, surface_map {offset, count}, layouts (the
 /// records' fields, byte offsets and types), frames [{step, time_s,
 /// positions_offset, contacts {offset, count}, oracle {offset, count} or
-/// null}], bytes, bytes_per_frame}.
+/// null, boundary {offset, count} or null}], bytes, bytes_per_frame}.
 /// replay.bin is streamed to replay.bin.tmp and renamed when the run ends
 /// (stable or not); replay.json is written then, atomically.
 

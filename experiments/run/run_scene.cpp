@@ -164,8 +164,8 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
     outcome.steps_done = s + 1;
     if (!ctx.unstable.empty()) outcome = {"unstable", ctx.unstable, s + 1, 0.0};
     if (options.on_step) options.on_step(s + 1, steps_total);
-    if (outcome.status != "ok") break;
-    if (options.after_step && !options.after_step(ctx)) break;
+    const bool go_on = !options.after_step || options.after_step(ctx);  // the unstable step too: the page shows it
+    if (outcome.status != "ok" || !go_on) break;
   }
   outcome.wall_s = ms_since(run_start) / 1000.0;
 

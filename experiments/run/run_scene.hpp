@@ -63,8 +63,9 @@ struct RunOptions {
   /// tcbench live: called before each step's handling, outside every timed
   /// interval (moves the mouse-driven probe to where the mouse put it).
   std::function<void(World&)> before_step;
-  /// tcbench live: called after each step is measured and written; returning
-  /// false ends the run there, status ok (run.json: steps < steps_requested).
+  /// tcbench live: called after each step is measured and written (the step
+  /// that went unstable too); returning false ends the run there, status ok
+  /// (run.json: steps < steps_requested).
   std::function<bool(const StepContext&)> after_step;
 };
 

@@ -3,8 +3,10 @@
 #include <httplib.h>
 #include <pthread.h>
 #include <signal.h>
+#include <sys/socket.h>
 
 #include <atomic>
+#include <chrono>
 #include <ctime>
 #include <iostream>
 #include <thread>
@@ -44,6 +46,13 @@ int serve_locally(const std::filesystem::path& viewer_dir, int port, const std::
     throw InputError(viewer_dir.string(), 0, "cannot serve this directory");
   server.set_file_extension_and_mimetype_mapping("js", "text/javascript");
   server.set_file_extension_and_mimetype_mapping("mjs", "text/javascript");
+  // Debian's httplib sets SO_REUSEPORT on its sockets: a second server
+  // would then bind the same port and the kernel would split connections
+  // between the two. SO_REUSEADDR only, so a taken port is an error.
+  server.set_socket_options([](socket_t sock) {
+    int yes = 1;
+    setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof(yes));
+  });
   add_routes(server);
   server.set_error_handler([](const httplib::Request& request, httplib::Response& response) {
     if (response.body.empty())
@@ -69,6 +78,9 @@ int serve_locally(const std::filesystem::path& viewer_dir, int port, const std::
   std::atomic<bool> done{false};
   std::atomic<bool> interrupted{false};
   std::thread waiter([&] {
+    // httplib's stop() does nothing before listen_after_bind() has started
+    // listening: a signal that came earlier stays pending until then.
+    while (!done.load() && !server.is_running()) std::this_thread::sleep_for(std::chrono::milliseconds(5));
     const timespec tick{0, 100'000'000};
     while (!done.load()) {
       const bool signalled = sigtimedwait(&signals, nullptr, &tick) > 0;

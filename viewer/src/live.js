@@ -23,8 +23,9 @@ export async function startLive(state, $) {
   const arrow = new THREE.ArrowHelper(new THREE.Vector3(0, 1, 0), new THREE.Vector3(), 0.01, 0xd62728);
   arrow.visible = false;
   view.scene.add(arrow);
-  // The left button drives the probe; the right one orbits, the middle one zooms.
-  view.controls.mouseButtons = { LEFT: null, MIDDLE: THREE.MOUSE.DOLLY, RIGHT: THREE.MOUSE.ROTATE };
+  // The left button drives the probe, the wheel its z; the right button
+  // orbits, the middle one pans (the wheel is taken, so no zoom).
+  view.controls.mouseButtons = { LEFT: null, MIDDLE: THREE.MOUSE.PAN, RIGHT: THREE.MOUSE.ROTATE };
   view.controls.enableZoom = false;
 
   const live = { frames: 0, force: 0, forceMax: 0, target: null, sent: 0, refused: 0, last: null };
@@ -41,9 +42,21 @@ export async function startLive(state, $) {
     inFlight = true;
     const target = pending;
     pending = null;
-    const response = await fetch('live/probe', { method: 'POST', body: JSON.stringify({ x: target[0], y: target[1], z: target[2] }) });
-    if (response.ok) live.sent += 1; else { live.refused += 1; $('details').textContent = await response.text(); }
-    inFlight = false;
+    try {
+      const response = await fetch('live/probe', { method: 'POST', headers: { 'Content-Type': 'application/json' },
+        body: JSON.stringify({ x: target[0], y: target[1], z: target[2] }) });
+      if (response.ok) live.sent += 1;
+      else {
+        // Refused (out of reach): the mouse starts again from where the probe is.
+        live.refused += 1;
+        $('details').textContent = await response.text();
+        if (live.last) live.target = live.last.probe_target_m;
+      }
+    } catch (e) {
+      $('details').textContent = `the server did not answer: ${e.message}`;
+    } finally {
+      inFlight = false;
+    }
     send();
   };
   const moveTarget = (dx, dy, dz) => {
@@ -113,7 +126,11 @@ export async function startLive(state, $) {
       + `probe force ${live.force.toFixed(3)} N, ${f.contacts.length} colliding points`;
     state.ready = true;
   };
+  // The stream ends when the run does (Ctrl-C, --seconds, or unstable: the
+  // terminal says which); the browser would retry forever, so stop it.
   events.onerror = () => {
-    if (events.readyState === EventSource.CLOSED) $('details').textContent = 'the simulation has ended';
+    events.close();
+    $('counter').textContent += ' (ended)';
+    $('details').textContent = 'the live run has ended or the server stopped: its terminal says why';
   };
 }

@@ -16,7 +16,8 @@ function showError(message) {
   $('error').hidden = false;
 }
 
-// The frame of run r that shows `step`: the last one recorded at or before it.
+// The frame of run r that shows `step`: the last one recorded at or before
+// it (its first when it has none that early; the title then says so).
 function frameAtStep(run, step) {
   let lo = 0;
   let hi = run.frames.length - 1;
@@ -43,7 +44,8 @@ function setFrame(i) {
     const ms = row >= 0 && col.handling_ms ? col.handling_ms[row] : NaN;
     const budget = row >= 0 && col.budget_ms ? col.budget_ms[row] : NaN;
     const verdicts = Object.entries(view.stats.verdicts).map(([k, v]) => `${k} ${v}`).join(', ');
-    return `${run.name}: ${f.contacts.length} colliding points` + (f.oracle ? `, oracle ${f.oracle.length}` : ', oracle did not run')
+    const early = f.step > step ? ` (its first frame, step ${f.step}: none recorded by step ${step})` : '';
+    return `${run.name}${early}: ${f.contacts.length} colliding points` + (f.oracle ? `, oracle ${f.oracle.length}` : ', oracle did not run')
       + (Number.isFinite(ms) ? `, handling ${ms.toFixed(3)} ms` + (Number.isFinite(budget) ? ` of ${budget} ms` : '') : '')
       + (verdicts ? ` (${verdicts})` : '');
   });
@@ -65,7 +67,8 @@ function legend() {
   const by = $('colour-by').value;
   const colours = by === 'oracle' ? VERDICT_COLOURS : FORCE_COLOURS;
   const meaning = by === 'oracle'
-    ? { correct: 'method and oracle', missed: 'oracle only (missed)', false: 'method only (false)', unjudged: 'no oracle on this frame' }
+    ? { correct: 'method and oracle', missed: 'oracle only (missed)', false: 'method only (false)',
+      touching: 'method only, touching (counted neither way)', unjudged: 'no oracle on this frame' }
     : { computed: 'force computed', held: 'held', extrapolated: 'extrapolated', tracked: 'tracked depth', none: 'no force this step' };
   $('legend').innerHTML = Object.entries(colours).map(([k, c]) =>
     `<span><i style="background:#${c.toString(16).padStart(6, '0')}"></i>${meaning[k]}</span>`).join('');
@@ -183,7 +186,8 @@ async function main() {
   legend();
   layout();
   state.plot.setRuns(state.runs);
-  if (state.runs[0].frames.length === 0) throw new Error('the replay holds no frames (was the run shorter than --record N steps?)');
+  for (const run of state.runs)
+    if (run.frames.length === 0) throw new Error(`${run.name}: the replay holds no frames (was the run shorter than --record N steps?)`);
   setFrame(0);
   state.ready = true;
 }

@@ -26,6 +26,8 @@ export function parseReplay(manifest, bin) {
     positions: view(bin, Float32Array, f.positions_offset, vertexCount, 3),
     contacts: readContacts(bin, f.contacts, contactBytes),
     oracle: f.oracle ? readOracle(bin, f.oracle, oracleBytes) : null,
+    // Touching points (recorded since the boundary buffer was added; older replays have none).
+    boundary: f.boundary ? view(bin, Int32Array, f.boundary.offset, f.boundary.count, 2) : null,
     aabbs: f.aabbs ? view(bin, Float32Array, f.aabbs.offset, f.aabbs.count, 6) : null,
     cells: f.cells ? view(bin, Int32Array, f.cells.offset, f.cells.count, 3) : null,
     cellsTruncated: f.cells ? !!f.cells.truncated : false,
@@ -42,8 +44,8 @@ export function parseReplay(manifest, bin) {
 }
 
 function readContacts(bin, where, bytes) {
-  const data = new DataView(bin, where.offset, where.count * bytes);
   if (where.offset + where.count * bytes > bin.byteLength) throw new Error('replay.bin: contacts outside the file');
+  const data = new DataView(bin, where.offset, where.count * bytes);
   const out = [];
   for (let i = 0; i < where.count; ++i) {
     const at = i * bytes;
@@ -72,7 +74,9 @@ function readOracle(bin, where, bytes) {
 
 // Every point of a frame with what the method and the oracle said of it:
 // verdict 'correct' (both), 'missed' (oracle only), 'false' (method only),
-// or null when the oracle did not run on this frame.
+// 'touching' (method only, exactly on another body's surface by the oracle:
+// recall and precision count it neither way), or null when the oracle did
+// not run on this frame.
 export function judgedPoints(frame) {
   const key = (p) => `${p.body}:${p.vertex}`;
   const points = new Map();
@@ -85,7 +89,12 @@ export function judgedPoints(frame) {
     }
   }
   const out = [...points.values()];
-  for (const p of out) p.verdict = frame.oracle ? (p.method && p.truth ? 'correct' : p.truth ? 'missed' : 'false') : null;
+  const touching = new Set();
+  if (frame.boundary) for (let i = 0; i < frame.boundary.length; i += 2) touching.add(`${frame.boundary[i]}:${frame.boundary[i + 1]}`);
+  for (const p of out) {
+    p.verdict = !frame.oracle ? null : p.method && p.truth ? 'correct' : p.truth ? 'missed'
+      : touching.has(key(p)) ? 'touching' : 'false';
+  }
   return out;
 }
 

@@ -7,7 +7,7 @@ import { judgedPoints } from './replay.js';
 
 const BODY_COLOURS = [0x8fa8c8, 0xc8a88f, 0x9fc88f, 0xc88fb8, 0xc8c38f, 0x8fc8c3];
 export const FORCE_COLOURS = { computed: 0x1f77b4, held: 0x17becf, extrapolated: 0xff7f0e, tracked: 0x9467bd, none: 0x7f7f7f };
-export const VERDICT_COLOURS = { correct: 0x2ca02c, missed: 0xd62728, false: 0xe6c700, unjudged: 0x7f7f7f };
+export const VERDICT_COLOURS = { correct: 0x2ca02c, missed: 0xd62728, false: 0xe6c700, touching: 0x8c564b, unjudged: 0x7f7f7f };
 const FORCE_BY_CODE = { 0: 'computed', 1: 'held', 2: 'extrapolated', 3: 'tracked', 255: 'none' };
 
 // The 12 edges of a box as pairs of corner indices (corner bits: x, y, z).

@@ -26,17 +26,21 @@ async function main() {
   try {
     for (const [body, why] of [['{"x":1}', 'missing keys'], ['not json', 'not JSON'], ['{"x":0,"y":"a","z":0}', 'a string'],
       ['{"x":0,"y":0,"z":1e308,"w":1}', 'an extra key'], ['{"x":1e6,"y":0,"z":0}', 'beyond reach']]) {
-      const r = await fetch(`${url}live/probe`, { method: 'POST', body });
+      const r = await fetch(`${url}live/probe`, { method: 'POST', headers: { 'Content-Type': 'application/json' }, body });
       const text = await r.text();
       check(r.status === 400 && text.startsWith('tcbench live:'), `a probe message with ${why} is refused: ${r.status} ${text.trim()}`);
     }
+    // A page of another origin can POST text/plain without asking: refused.
+    const plain = await fetch(`${url}live/probe`, { method: 'POST', headers: { 'Content-Type': 'text/plain' }, body: '{"x":0,"y":0.3,"z":0}' });
+    check(plain.status === 415, `a target not sent as JSON is refused (${plain.status})`);
     const page = await browser.newPage({ viewport: { width: 1000, height: 700 } });
     const consoleErrors = [];
     page.on('console', (m) => { if (m.type() === 'error') consoleErrors.push(m.text()); });
     page.on('pageerror', (e) => consoleErrors.push(String(e)));
     await page.goto(url);
     await page.waitForFunction(() => window.tcbench && window.tcbench.live && window.tcbench.live.frames > 3, null, { timeout: 60000 });
-    const start = await page.evaluate(() => ({ target: window.tcbench.live.target, force: window.tcbench.live.force }));
+    const start = await page.evaluate(() => ({ target: window.tcbench.live.target, force: window.tcbench.live.force,
+      centre: window.tcbench.live.last.probe_centre_m }));
     check(start.force === 0, `the probe starts free of the cow (|F| = ${start.force})`);
 
     // Drag the probe down onto the cow's back with the mouse, in small moves.
@@ -58,7 +62,9 @@ async function main() {
     if (shot) await page.screenshot({ path: shot });
     await page.mouse.up();
     const live = await page.evaluate(() => ({ target: window.tcbench.live.target, sent: window.tcbench.live.sent, last: window.tcbench.live.last }));
-    check(live.sent > 0 && live.target[1] < start.target[1], `the mouse moved the probe down (${start.target[1].toFixed(3)} -> ${live.target[1].toFixed(3)} m, ${live.sent} messages)`);
+    // Where the simulation has the probe, not where the page wants it.
+    const moved = start.centre[1] - live.last.probe_centre_m[1];
+    check(live.sent > 0 && moved > 0.01, `the mouse moved the probe down in the simulation by ${(moved * 100).toFixed(1)} cm (${live.sent} messages)`);
     check(force > 0, `pressing into the cow gives a non-zero force (|F| = ${force.toFixed(3)} N)`);
     check(live.last.rate_hz > 0 && /loop \d+ Hz of 1000 Hz/.test(await page.textContent('#counter')), `the loop's rate is shown: ${await page.textContent('#counter')}`);
     check(consoleErrors.length === 0, `no console errors (${consoleErrors.join('; ')})`);
@@ -70,7 +76,10 @@ async function main() {
   check(end.code === 0 && end.out().includes('stopped'), `Ctrl-C stops the server cleanly (exit ${end.code}): ${end.out().trim().split('\n').pop()}`);
   const path = join(out, 'probe_path.csv');
   check(existsSync(join(out, 'run.json')) && existsSync(join(out, 'steps.csv')), 'the live run left run.json and steps.csv');
-  check(existsSync(path) && readFileSync(path, 'utf8').startsWith('time_s,x_m,y_m,z_m\n'), 'the probe path is saved as a trajectory CSV');
+  const rows = existsSync(path) ? readFileSync(path, 'utf8').trim().split('\n') : [];
+  const lowest = Math.min(...rows.slice(1).map((r) => Number(r.split(',')[2])));
+  check(rows[0] === 'time_s,x_m,y_m,z_m' && rows.length > 50 && lowest < Number(rows[1].split(',')[2]) - 0.01,
+    `the probe path is saved as a trajectory CSV of the drag (${rows.length - 1} samples, down to y = ${lowest.toFixed(3)} m)`);
   if (existsSync(path)) {
     const replay = spawnSync(tcbench, ['run', 'haptic_probe', '--set', `object.probe.trajectory=${path}`, '--steps', '200', '--quiet',
       '--out', join(out, 'replayed')], { encoding: 'utf8' });

@@ -37,6 +37,10 @@ async function main() {
     check(refused.status === 404, `a run index that does not exist is 404 (got ${refused.status})`);
     const outside = await fetch(`${url}run/0/..%2F..%2Fetc%2Fpasswd`);
     check(outside.status === 404, `a file outside the run's whitelist is 404 (got ${outside.status})`);
+    // A taken port is an error, not a second server sharing it.
+    const port = new URL(url).port;
+    const second = spawnSync(tcbench, ['view', runA, '--port', port], { encoding: 'utf8', timeout: 20000 });
+    check(second.status === 2 && second.stderr.includes(`127.0.0.1:${port}`), `a second server on port ${port} is exit 2 (got ${second.status}: ${second.stderr.trim()})`);
     const steps = await fetch(`${url}run/0/steps.csv`);
     check(steps.ok && (await steps.text()).startsWith('step,'), 'steps.csv is served');
 
@@ -75,7 +79,7 @@ async function main() {
       check(!a.equals(b), `toggling ${name} (${key}) changes the rendered pixels`);
       await page.locator('body').press(key);
       const c = await pixels(page);
-      check(!c.equals(b), `toggling ${name} back changes them again`);
+      check(c.equals(a), `toggling ${name} back restores the same pixels`);
     }
     const a = await pixels(page);
     await page.selectOption('#colour-by', 'oracle');

@@ -53,8 +53,9 @@ def draw(ctx, runs):
     shutil.copyfile(source, target)
     command = "tcbench view " + " ".join(record.get("runs", []))
     caption = (f"The recorded frame at or before step {record.get('step')} of each run, as the viewer shows it: "
-               "points the method held coloured by the oracle's verdict (green: both, red: the oracle only, "
-               "missed; yellow: the method only), penetration vectors at five times the depth, and the per-step "
-               f"plot under the views (handling time against the budget, recall, max depth, kinetic energy). "
+               "colliding points coloured by the oracle's verdict (green: the method and the oracle, red: the "
+               "oracle only, missed; yellow: the method only; brown: the method only, touching), penetration "
+               "vectors at five times the depth, and the per-step plot under the views (handling time, with the "
+               "budget dashed where it is wall-clock; recall; max depth; kinetic energy). "
                f"Open the same runs to play, scrub and toggle the overlays: {command}. {listing}").strip()
     return Section(TITLE, caption, shown, image=os.path.relpath(target, ctx.out))

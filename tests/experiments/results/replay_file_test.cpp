@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include "experiments/results/trajectory_file.hpp"
@@ -121,10 +122,26 @@ TEST_CASE("replay: the surface once, then per recorded step positions, contacts 
       CHECK(force == (std::isnan(depth) ? kNoForce : 0));
       ++contacts_seen;
     }
+    CHECK(frame["boundary"].is_null() == frame["oracle"].is_null());
     if (frame["oracle"].is_null()) continue;
     ++oracle_frames;
     CHECK(std::to_string(frame["oracle"]["count"].get<std::uint64_t>()) ==
           cell(options.out_dir / "steps.csv", "oracle_points", step));
+    // Touching points follow the inside points: valid vertices, none of them inside.
+    const std::uint64_t inside_at = frame["oracle"]["offset"], inside = frame["oracle"]["count"];
+    const std::uint64_t touching_at = frame["boundary"]["offset"], touching = frame["boundary"]["count"];
+    CHECK(touching_at == inside_at + inside * kOraclePointBytes);
+    std::set<std::pair<std::int32_t, std::int32_t>> inside_points;
+    for (std::uint64_t i = 0; i < inside; ++i)
+      inside_points.insert({at<std::int32_t>(bytes, inside_at + i * kOraclePointBytes),
+                            at<std::int32_t>(bytes, inside_at + i * kOraclePointBytes + 4)});
+    for (std::uint64_t i = 0; i < touching; ++i) {
+      const auto body = at<std::int32_t>(bytes, touching_at + 8 * i);
+      const auto vertex = at<std::int32_t>(bytes, touching_at + 8 * i + 4);
+      REQUIRE((body == 0 || body == 1));
+      CHECK(vertex >= 0);
+      CHECK_FALSE(inside_points.count({body, vertex}));
+    }
   }
   CHECK(contacts_seen > 0);   // the blocks rest on each other
   CHECK(oracle_frames == 2);  // steps 10 and 20

@@ -34,7 +34,7 @@ TEST_CASE("live: a probe message is three finite coordinates and nothing else", 
   }
 }
 
-TEST_CASE("live: the mouse's target moves the probe, the run stops when asked, the path replays", "[live]") {
+TEST_CASE("live: the mouse's target moves the probe, the run stops when asked, the path reads back as a trajectory", "[live]") {
   const SceneDesc scene = load_scene_file(resolve_scene("haptic_probe", default_scene_dirs()));
   const fs::path dir = fs::temp_directory_path() / ("tcbench_live_" + std::to_string(::getpid()));
   fs::remove_all(dir);
