@@ -25,12 +25,14 @@ try {
   const errors = await page.evaluate(() => window.tcbench.errors);
   if (errors.length) throw new Error(errors.join('; '));
   const frame = await page.evaluate((s) => {
-    const frames = window.tcbench.runs[0].frames;
+    const timeline = window.tcbench.timeline;
     let i = 0;
-    while (i + 1 < frames.length && frames[i + 1].step <= s) ++i;
-    return { index: i, oracle: !!frames[i].oracle };
+    while (i + 1 < timeline.length && timeline[i + 1].step <= s) ++i;
+    const scrub = document.getElementById('scrub');
+    scrub.value = i;
+    scrub.dispatchEvent(new Event('input'));
+    return { index: i, oracle: window.tcbench.views.every((v) => v.frame && !!v.frame.oracle) };
   }, Number(step));
-  await page.evaluate((i) => { const s = document.getElementById('scrub'); s.value = i; s.dispatchEvent(new Event('input')); }, frame.index);
   if (frame.oracle) await page.selectOption('#colour-by', 'oracle');
   await page.selectOption('#vector-scale', '5');
   await page.screenshot({ path: out });

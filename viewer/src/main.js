@@ -1,7 +1,7 @@
 // The viewer page: plays one or two recorded runs in lockstep (tcbench view),
 // with seed 001's key map, overlays and a synchronized plot.
 import { loadRun, FORCE_NAMES } from './replay.js';
-import { RunView, FORCE_COLOURS, VERDICT_COLOURS } from './run_view.js';
+import { RunView, FORCE_COLOURS, VERDICT_COLOURS, DEPTH_COLOURS } from './run_view.js';
 import { StepPlot } from './plot.js';
 import { startLive } from './live.js';
 
@@ -29,9 +29,25 @@ function frameAtStep(run, step) {
   return lo;
 }
 
+// Every recorded step of any run, in order: the runs may be recorded at
+// different steps or lengths, and each view shows its own frame at or
+// before the step.
+function timelineOf(runs) {
+  const steps = new Map();
+  for (const run of runs) for (const f of run.frames) if (!steps.has(f.step)) steps.set(f.step, { step: f.step, time_s: f.time_s });
+  return [...steps.values()].sort((a, b) => a.step - b.step);
+}
+
+// The timeline's index showing `step`: its last entry at or before it.
+function indexAtStep(step) {
+  let i = 0;
+  while (i + 1 < state.timeline.length && state.timeline[i + 1].step <= step) ++i;
+  return i;
+}
+
 function setFrame(i) {
   if (!state.runs.length) return;  // live: no recording to step through
-  const timeline = state.runs[0].frames;
+  const timeline = state.timeline;
   state.frame = Math.max(0, Math.min(timeline.length - 1, Math.round(i)));
   const step = timeline[state.frame].step;
   state.views.forEach((view, r) => view.showFrame(state.runs[r].frames[frameAtStep(state.runs[r], step)]));
@@ -65,8 +81,11 @@ function toggleOverlay(name) { setOverlay(name, !state.views[0].overlays[name]);
 
 function legend() {
   const by = $('colour-by').value;
-  const colours = by === 'oracle' ? VERDICT_COLOURS : FORCE_COLOURS;
-  const meaning = by === 'oracle'
+  const colours = by === 'oracle' ? VERDICT_COLOURS : by === 'depth' ? DEPTH_COLOURS : FORCE_COLOURS;
+  const meaning = by === 'depth'
+    ? { border: 'depth at the border', propagated: 'depth propagated', tet_pair: 'depth from a tet pair', none: 'no depth',
+      'not held': 'oracle only: not held' }
+    : by === 'oracle'
     ? { correct: 'method and oracle', missed: 'oracle only (missed)', false: 'method only (false)',
       touching: 'method only, touching (counted neither way)', unjudged: 'no oracle on this frame' }
     : { computed: 'force computed', held: 'held', extrapolated: 'extrapolated', tracked: 'tracked depth', none: 'no force this step' };
@@ -84,7 +103,7 @@ function play() {
     if (carry >= 1) {
       const next = state.frame + Math.floor(carry);
       carry -= Math.floor(carry);
-      setFrame(next >= state.runs[0].frames.length ? 0 : next);
+      setFrame(next >= state.timeline.length ? 0 : next);
     }
     requestAnimationFrame(tick);
   };
@@ -166,7 +185,21 @@ async function main() {
     box.disabled = !debug;
     box.parentElement.title = debug ? '' : 'recorded without --record-debug';
   }
-  state.plot = new StepPlot($('plot'), (step) => setFrame(frameAtStep(state.runs[0], step)));
+  state.plot = new StepPlot($('plot'), (step) => setFrame(indexAtStep(step)));
+  // One camera for all views: orbiting one orbits the others.
+  for (const view of state.views) {
+    view.onCameraChange = (source) => {
+      for (const other of state.views) {
+        if (other === source) continue;
+        other.syncing = true;
+        other.camera.position.copy(source.camera.position);
+        other.camera.up.copy(source.camera.up);
+        other.controls.target.copy(source.controls.target);
+        other.controls.update();
+        other.syncing = false;
+      }
+    };
+  }
   // Picking: a click on a point says what the method and the oracle said of it.
   state.views.forEach((view, r) => {
     view.renderer.domElement.addEventListener('click', (event) => {
@@ -181,13 +214,14 @@ async function main() {
         + (p.verdict ? `; oracle: ${p.truth ? `inside, true depth ${mm(p.trueDepth)}` : 'outside'} (${p.verdict})` : '; no oracle on this frame');
     });
   });
-  $('scrub').max = state.runs[0].frames.length - 1;
+  for (const run of state.runs)
+    if (run.frames.length === 0) throw new Error(`${run.name}: the replay holds no frames (was the run shorter than --record N steps?)`);
+  state.timeline = timelineOf(state.runs);
+  $('scrub').max = state.timeline.length - 1;
   bindControls();
   legend();
   layout();
   state.plot.setRuns(state.runs);
-  for (const run of state.runs)
-    if (run.frames.length === 0) throw new Error(`${run.name}: the replay holds no frames (was the run shorter than --record N steps?)`);
   setFrame(0);
   state.ready = true;
 }

@@ -5,11 +5,22 @@
 const RUN_COLOURS = ['#1f77b4', '#ff7f0e'];
 const PANELS = [
   { title: 'handling time (ms) against the budget (dashed)', series: (c) => c.handling_ms, extra: (c) => c.budget_ms, robust: true },
+  // A work budget is a count of work units, not milliseconds (budget_ms is
+  // empty then): its panel draws the units each step spent against it.
+  { title: 'work units against the work budget (dashed)', series: (c) => c.work_units, robust: true,
+    show: (runs) => runs.some((r) => workBudget(r) !== null),
+    extra: (c, run) => workBudget(run) !== null && c.work_units && c.work_units.map(() => workBudget(run)) },
   { title: 'recall (oracle frames)', series: (c) => c.recall, fixed: [0, 1] },
   { title: 'max depth (mm)', series: (c) => c.max_depth && c.max_depth.map((x) => x * 1e3) },
   { title: 'kinetic energy (J)', series: (c) => c.kinetic_energy },
   { title: '|probe force| (N)', series: (c) => c.probe_force_x && c.probe_force_x.map((x, i) => Math.hypot(x, c.probe_force_y[i], c.probe_force_z[i])) },
 ];
+
+// The run's work budget in units, or null (none, or a wall-clock budget).
+function workBudget(run) {
+  const budget = run && run.run && run.run.budget;
+  return budget && budget.kind === 'work' && Number.isFinite(budget.value) ? budget.value : null;
+}
 
 export class StepPlot {
   constructor(canvas, onSeek) {
@@ -28,8 +39,8 @@ export class StepPlot {
   setRuns(runs) {
     this.runs = runs.filter((r) => r.steps && r.steps.columns.step);
     // A panel no run has a number for (no oracle, no probe) is left out.
-    const panels = PANELS.filter((p) => this.runs.some((r) => {
-      const s = p.series(r.steps.columns);
+    const panels = PANELS.filter((p) => (!p.show || p.show(this.runs)) && this.runs.some((r) => {
+      const s = p.series(r.steps.columns, r);
       return s && s.some(Number.isFinite);
     }));
     this.panels = panels;
@@ -78,7 +89,7 @@ export class StepPlot {
       const values = [];
       for (const r of this.runs) {
         for (const f of [panel.series, panel.extra]) {
-          const s = f && f(r.steps.columns);
+          const s = f && f(r.steps.columns, r);
           if (s) for (const v of s) if (Number.isFinite(v)) values.push(v);
         }
       }
@@ -103,7 +114,7 @@ export class StepPlot {
       g.strokeRect(this.left, top, right - this.left, bottom - top);
       this.runs.forEach((r, i) => {
         const steps = r.steps.columns.step;
-        const lines = [[panel.series(r.steps.columns), []], [panel.extra && panel.extra(r.steps.columns), [4, 3]]];
+        const lines = [[panel.series(r.steps.columns, r), []], [panel.extra && panel.extra(r.steps.columns, r), [4, 3]]];
         for (const [s, dash] of lines) {
           if (!s) continue;
           g.strokeStyle = RUN_COLOURS[i % RUN_COLOURS.length];

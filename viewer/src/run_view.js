@@ -9,6 +9,10 @@ const BODY_COLOURS = [0x8fa8c8, 0xc8a88f, 0x9fc88f, 0xc88fb8, 0xc8c38f, 0x8fc8c3
 export const FORCE_COLOURS = { computed: 0x1f77b4, held: 0x17becf, extrapolated: 0xff7f0e, tracked: 0x9467bd, none: 0x7f7f7f };
 export const VERDICT_COLOURS = { correct: 0x2ca02c, missed: 0xd62728, false: 0xe6c700, touching: 0x8c564b, unjudged: 0x7f7f7f };
 const FORCE_BY_CODE = { 0: 'computed', 1: 'held', 2: 'extrapolated', 3: 'tracked', 255: 'none' };
+// Where a point's depth came from (the replay's depth_source): seed 001's
+// border points are those whose depth was found at the border.
+export const DEPTH_COLOURS = { border: 0x1f77b4, propagated: 0x2ca02c, tet_pair: 0x9467bd, none: 0x7f7f7f, 'not held': 0xd62728 };
+const DEPTH_BY_CODE = { 0: 'none', 1: 'border', 2: 'propagated', 3: 'tet_pair' };
 
 // The 12 edges of a box as pairs of corner indices (corner bits: x, y, z).
 const BOX_EDGES = [[0, 1], [2, 3], [4, 5], [6, 7], [0, 2], [1, 3], [4, 6], [5, 7], [0, 4], [1, 5], [2, 6], [3, 7]];
@@ -79,7 +83,10 @@ export class RunView {
 
     this.camera = new THREE.PerspectiveCamera(40, 1, 1e-4, 1e4);
     this.controls = new OrbitControls(this.camera, this.renderer.domElement);
-    this.controls.addEventListener('change', () => this.render());
+    this.controls.addEventListener('change', () => {
+      this.render();
+      if (this.onCameraChange && !this.syncing) this.onCameraChange(this);
+    });
     this.orthoCameras = [0, 1, 2].map(() => new THREE.OrthographicCamera(-1, 1, 1, -1, -1e4, 1e4));
     this.frame = null;
     this.stats = { points: 0, verdicts: {} };
@@ -132,9 +139,11 @@ export class RunView {
     const verdicts = {};
     judged.forEach((p, i) => {
       pointPositions.set(p.position, 3 * i);
-      const name = this.colourBy === 'oracle' ? (p.verdict ?? 'unjudged') : FORCE_BY_CODE[p.force] ?? 'none';
+      const name = this.colourBy === 'oracle' ? (p.verdict ?? 'unjudged')
+        : this.colourBy === 'depth' ? (p.method ? DEPTH_BY_CODE[p.depthSource] ?? 'none' : 'not held')
+          : FORCE_BY_CODE[p.force] ?? 'none';
       verdicts[name] = (verdicts[name] ?? 0) + 1;
-      colour.setHex(this.colourBy === 'oracle' ? VERDICT_COLOURS[name] : FORCE_COLOURS[name]);
+      colour.setHex((this.colourBy === 'oracle' ? VERDICT_COLOURS : this.colourBy === 'depth' ? DEPTH_COLOURS : FORCE_COLOURS)[name]);
       pointColours.set([colour.r, colour.g, colour.b], 3 * i);
       if (p.direction && Number.isFinite(p.depth)) {
         const length = p.depth * this.vectorScale;

@@ -67,11 +67,24 @@ async function main() {
     // overlay has something to draw.
     const target = await page.evaluate(() => {
       const [a] = window.tcbench.runs;
-      const i = a.frames.findIndex((f) => f.contacts.length > 0 && f.oracle && f.oracle.length > 0);
-      return i;
+      const f = a.frames.find((g) => g.contacts.length > 0 && g.oracle && g.oracle.length > 0);
+      return f ? window.tcbench.timeline.findIndex((t) => t.step === f.step) : -1;
     });
     check(target >= 0, 'the recording has a frame with contacts and oracle points');
     await page.evaluate((i) => { document.getElementById('scrub').value = i; document.getElementById('scrub').dispatchEvent(new Event('input')); }, Math.max(target, 0));
+    const shown = await page.evaluate(() => window.tcbench.views.map((v) => v.frame.step));
+    check(shown[0] === shown[1], `lockstep: both views show step ${shown.join(' and ')}`);
+    // One camera: orbiting the left view (a left-button drag) turns the right one too.
+    const cameraBefore = await page.evaluate(() => window.tcbench.views[1].camera.position.toArray());
+    const left = await page.locator('#views canvas').first().boundingBox();
+    await page.mouse.move(left.x + left.width / 2, left.y + left.height / 2);
+    await page.mouse.down();
+    await page.mouse.move(left.x + left.width / 2 + 80, left.y + left.height / 2 + 20, { steps: 4 });
+    await page.mouse.up();
+    const cameras = await page.evaluate(() => window.tcbench.views.map((v) => v.camera.position.toArray()));
+    const turned = Math.hypot(...cameraBefore.map((x, k) => x - cameras[1][k]));
+    check(turned > 1e-3 && cameras[0].every((x, k) => Math.abs(x - cameras[1][k]) < 1e-9),
+      `the views share one camera: the right one moved ${turned.toFixed(3)} m with the left`);
     for (const [name, key] of [['wireframe', 'w'], ['boxes', 'b'], ['grid', 'g'], ['fourViews', 'v'], ['debug overlays', 'Backspace']]) {
       const a = await pixels(page);
       await page.locator('body').press(key);
@@ -85,6 +98,10 @@ async function main() {
     await page.selectOption('#colour-by', 'oracle');
     const b = await pixels(page);
     check(!a.equals(b), "colouring points by the oracle's verdict changes the pixels");
+    const d = await pixels(page);
+    await page.selectOption('#colour-by', 'depth');
+    check(!d.equals(await pixels(page)), 'colouring points by where their depth came from changes the pixels');
+    await page.selectOption('#colour-by', 'oracle');
     const verdicts = await page.evaluate(() => window.tcbench.views[0].stats.verdicts);
     check(Object.keys(verdicts).some((k) => ['correct', 'missed', 'false'].includes(k)), `points are judged: ${JSON.stringify(verdicts)}`);
 
