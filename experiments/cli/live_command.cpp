@@ -65,7 +65,6 @@ class LiveCommand final : public Command {
   }
 
   int execute() override {
-    if (m_port < 0 || m_port > 65535) throw InputError("--port", 0, "must be 0 .. 65535");
     const SceneDesc scene = load_scene_file(resolve_scene(m_scene, default_scene_dirs()), m_options.overrides);
     std::string probe;
     for (const ObjectDesc& o : scene.world.objects)

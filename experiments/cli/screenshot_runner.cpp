@@ -1,13 +1,11 @@
 #include "experiments/cli/screenshot_runner.hpp"
 
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <fstream>
 #include <iostream>
 #include <string>
 #include <vector>
 
+#include "experiments/cli/report_runner.hpp"
 #include "experiments/run/provenance.hpp"
 #include "sim/io/atomic_file.hpp"
 
@@ -15,23 +13,6 @@ namespace tcb::cli {
 namespace {
 
 using Json = nlohmann::json;
-
-// Runs argv[0] with its arguments, waits; its exit status (127: not started).
-int run_program(const std::vector<std::string>& args) {
-  std::cout.flush();
-  const pid_t pid = fork();
-  if (pid < 0) return 127;
-  if (pid == 0) {
-    std::vector<char*> argv;
-    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    execvp(argv[0], argv.data());
-    _exit(127);
-  }
-  int status = 0;
-  waitpid(pid, &status, 0);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128;
-}
 
 }  // namespace
 
@@ -85,7 +66,7 @@ Json make_viewer_screenshot(const std::filesystem::path& results_dir, const std:
     return finish("ok", "");
   }
   return finish(status == 77 ? "skipped" : "failed",
-                status == 127 ? "node could not be started (scripts/setup installs it)"
+                status == 127 || status < 0 ? "node could not be started (scripts/setup installs it)"
                 : status == 77 ? "no browser could start here (scripts/setup installs chromium)"
                                : "viewer/screenshot.mjs exited " + std::to_string(status) + " (its message is above)");
 }

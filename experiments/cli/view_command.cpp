@@ -1,13 +1,11 @@
 // tcbench view RUN_DIR [RUN_DIR]: plays recorded runs in the browser.
 #include <httplib.h>
 
-#include <fstream>
-#include <sstream>
-
 #include <nlohmann/json.hpp>
 
 #include "experiments/cli/command.hpp"
 #include "experiments/view/local_server.hpp"
+#include "sim/io/atomic_file.hpp"
 #include "sim/io/input_error.hpp"
 
 namespace tcb::cli {
@@ -15,13 +13,6 @@ namespace {
 
 // What the page may read from a run directory; nothing else in it is served.
 constexpr const char* kRunFiles[] = {"replay.json", "replay.bin", "steps.csv", "run.json"};
-
-std::string read_whole(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream out;
-  out << in.rdbuf();
-  return out.str();
-}
 
 class ViewCommand final : public Command {
  public:
@@ -41,7 +32,6 @@ class ViewCommand final : public Command {
   }
 
   int execute() override {
-    if (m_port < 0 || m_port > 65535) throw InputError("--port", 0, "must be 0 .. 65535");
     nlohmann::json runs = nlohmann::json::array();
     for (const auto& dir : m_runs) {
       if (!std::filesystem::is_directory(dir)) throw InputError(dir.string(), 0, "not a run directory");
@@ -72,7 +62,7 @@ class ViewCommand final : public Command {
           response.status = 404;
           return;
         }
-        response.set_content(read_whole(m_runs[index] / file), content_type_for(file));
+        response.set_content(read_file(m_runs[index] / file), content_type_for(file));
       });
     });
   }

@@ -71,6 +71,7 @@ LiveSession::LiveSession(const World& world, std::size_t probe_body, double dt_s
     : m_probe(probe_body), m_dt_s(dt_s), m_budget_ms(budget_ms) {
   const Body& probe = world.bodies.at(probe_body);
   m_start_m = m_target_m = probe.trajectory->at(world.time_s);
+  m_hold = std::make_shared<Trajectory>(Trajectory{{world.time_s}, {m_start_m}});
   // The mouse may take the probe anywhere within a few scene sizes of its start.
   Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
   for (const Body& b : world.bodies)
@@ -99,11 +100,11 @@ Vec3 LiveSession::target() const {
 void LiveSession::drive(World& world) {
   const Vec3 target = this->target();
   // The probe holds at the target over the coming step (World::step moves it
-  // to trajectory->at(t + dt)); the saved path is the same samples.
-  auto path = std::make_shared<Trajectory>();
-  path->time_s = {world.time_s + m_dt_s};
-  path->position_m = {target};
-  world.bodies[m_probe].trajectory = std::move(path);
+  // to trajectory->at(t + dt)): one sample, rewritten in place every step, no
+  // allocation in the loop. The saved path is the same samples.
+  m_hold->time_s[0] = world.time_s + m_dt_s;
+  m_hold->position_m[0] = target;
+  world.bodies[m_probe].trajectory = m_hold;
   std::lock_guard lock(m_mutex);
   m_path_time_s.push_back(world.time_s + m_dt_s);
   m_path_m.push_back(target);

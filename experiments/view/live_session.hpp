@@ -8,6 +8,7 @@
 #include <condition_variable>
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -81,6 +82,7 @@ class LiveSession {
   std::size_t m_probe;
   double m_dt_s, m_budget_ms;
   Vec3 m_start_m, m_target_m;
+  std::shared_ptr<Trajectory> m_hold;  ///< the probe's one-sample path (simulation thread only)
   double m_reach_m;
   std::vector<std::uint32_t> m_surface_body, m_surface_vertex;
   std::string m_scene;

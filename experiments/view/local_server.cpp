@@ -39,6 +39,7 @@ std::string content_type_for(const std::filesystem::path& file) {
 
 int serve_locally(const std::filesystem::path& viewer_dir, int port, const std::string& what,
                   const std::function<void(httplib::Server&)>& add_routes, const ServerHooks& hooks) {
+  if (port < 0 || port > 65535) throw InputError("--port", 0, "must be 0 .. 65535");
   httplib::Server server;
   // Only the page and its modules; never a listing, never outside the folder
   // (httplib's mount refuses paths with "..").

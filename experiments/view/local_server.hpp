@@ -31,8 +31,8 @@ std::filesystem::path viewer_directory(const std::filesystem::path& override_dir
 /// `finished` (polled ten times a second) says so. Prints the address to
 /// stdout once listening (tests read it). `on_listening` runs once the port
 /// is bound (a live simulation starts there), `on_stop` when stopping, before
-/// the server closes. InputError when the port cannot be bound (nothing has
-/// started then). Returns 0 after a clean stop.
+/// the server closes. InputError when the port is outside 0..65535 or cannot
+/// be bound (nothing has started then). Returns 0 after a clean stop.
 struct ServerHooks {
   std::function<void()> on_listening;
   std::function<void()> on_stop;

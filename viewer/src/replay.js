@@ -43,33 +43,30 @@ export function parseReplay(manifest, bin) {
   };
 }
 
-function readContacts(bin, where, bytes) {
-  if (where.offset + where.count * bytes > bin.byteLength) throw new Error('replay.bin: contacts outside the file');
+// Fixed-size records at where.offset, each read by read(data, at).
+function readRecords(bin, where, bytes, what, read) {
+  if (where.offset + where.count * bytes > bin.byteLength) throw new Error(`replay.bin: ${what} outside the file`);
   const data = new DataView(bin, where.offset, where.count * bytes);
   const out = [];
-  for (let i = 0; i < where.count; ++i) {
-    const at = i * bytes;
-    const f = (k) => data.getFloat32(at + k, true);
-    out.push({
-      body: data.getInt32(at, true), vertex: data.getInt32(at + 4, true), other: data.getInt32(at + 8, true),
-      tet: data.getInt32(at + 12, true), depth: f(16), direction: [f(20), f(24), f(28)], position: [f(32), f(36), f(40)],
-      force: data.getUint8(at + 44), depthSource: data.getUint8(at + 45),
-    });
-  }
+  for (let i = 0; i < where.count; ++i) out.push(read(data, i * bytes));
   return out;
 }
 
+const float3 = (data, at) => [0, 4, 8].map((k) => data.getFloat32(at + k, true));
+
+function readContacts(bin, where, bytes) {
+  return readRecords(bin, where, bytes, 'contacts', (data, at) => ({
+    body: data.getInt32(at, true), vertex: data.getInt32(at + 4, true), other: data.getInt32(at + 8, true),
+    tet: data.getInt32(at + 12, true), depth: data.getFloat32(at + 16, true), direction: float3(data, at + 20),
+    position: float3(data, at + 32), force: data.getUint8(at + 44), depthSource: data.getUint8(at + 45),
+  }));
+}
+
 function readOracle(bin, where, bytes) {
-  if (where.offset + where.count * bytes > bin.byteLength) throw new Error('replay.bin: oracle points outside the file');
-  const data = new DataView(bin, where.offset, where.count * bytes);
-  const out = [];
-  for (let i = 0; i < where.count; ++i) {
-    const at = i * bytes;
-    const f = (k) => data.getFloat32(at + k, true);
-    out.push({ body: data.getInt32(at, true), vertex: data.getInt32(at + 4, true), other: data.getInt32(at + 8, true),
-      depth: f(12), position: [f(16), f(20), f(24)] });
-  }
-  return out;
+  return readRecords(bin, where, bytes, 'oracle points', (data, at) => ({
+    body: data.getInt32(at, true), vertex: data.getInt32(at + 4, true), other: data.getInt32(at + 8, true),
+    depth: data.getFloat32(at + 12, true), position: float3(data, at + 16),
+  }));
 }
 
 // Every point of a frame with what the method and the oracle said of it:
