@@ -33,10 +33,18 @@ const SettingSpec kWidenStale{.name = "widen_stale",
                                              "searches by how far the hashed elements can have moved since, so none "
                                              "is missed for being hashed where it was (ours, not the paper's)"};
 
+const SettingSpec kRehashStale{.name = "rehash_stale",
+                               .type = SettingSpec::Type::Boolean,
+                               .default_value = false,
+                               .description = "once a cycle spans steps, refresh the tet hash before querying in a "
+                                              "later step: every moving tet's box, and the tets that left their "
+                                              "cells entered into a second table (ours, not the paper's)"};
+
 InterruptibleHandler::Options interruptible_options(const MethodSettings& s, std::int64_t keep_lost_cycles = 0) {
   return {.keep_lost_cycles = keep_lost_cycles,
           .schedule = {.granularity = s.boolean("fine_tasks") ? TaskGranularity::fine_tasks() : TaskGranularity{},
-                       .widen_stale = s.boolean("widen_stale")},
+                       .widen_stale = s.boolean("widen_stale"),
+                       .rehash_stale = s.boolean("rehash_stale")},
           .reserve_apply = s.boolean("reserve_apply")};
 }
 
@@ -48,7 +56,7 @@ const std::vector<MethodInfo>& method_registry() {
       {.name = "interruptible",
        .description = "the paper's method: the cycle under a time budget, resumed next step, forces extrapolated "
                       "meanwhile",
-       .settings = {kFineTasks, kReserveApply, kWidenStale},
+       .settings = {kFineTasks, kReserveApply, kWidenStale, kRehashStale},
        .make =
            [](const MethodSettings& s) {
              return std::make_unique<InterruptibleHandler>(Stale::Extrapolate, interruptible_options(s));
@@ -56,7 +64,7 @@ const std::vector<MethodInfo>& method_registry() {
        .uses_budget = true},
       {.name = "interruptible_no_extrapolation",
        .description = "ablation: interruptible without force extrapolation",
-       .settings = {kFineTasks, kReserveApply, kWidenStale},
+       .settings = {kFineTasks, kReserveApply, kWidenStale, kRehashStale},
        .make =
            [](const MethodSettings& s) {
              return std::make_unique<InterruptibleHandler>(Stale::Nothing, interruptible_options(s));
@@ -76,7 +84,7 @@ const std::vector<MethodInfo>& method_registry() {
                                     "the paper's history"},
                     kFineTasks,
                     kReserveApply,
-                    kWidenStale},
+                    kWidenStale, kRehashStale},
        .make =
            [](const MethodSettings& s) {
              return std::make_unique<InterruptibleHandler>(Stale::Track,
@@ -86,7 +94,7 @@ const std::vector<MethodInfo>& method_registry() {
       {.name = "interruptible_prioritized",
        .description = "variant (not in the paper; its future work): interruptible, but each cycle queries the "
                       "fastest points first, so they get their depth and force first",
-       .settings = {kFineTasks, kReserveApply, kWidenStale},
+       .settings = {kFineTasks, kReserveApply, kWidenStale, kRehashStale},
        .make =
            [](const MethodSettings& s) {
              InterruptibleHandler::Options options = interruptible_options(s);

@@ -89,6 +89,9 @@ class SpatialHash {
   }
 
   double cell_size_m() const { return m_cell_size; }
+  HashFunction function() const { return m_function; }
+  /// The grid index of coordinate x along any axis: floor(x / cell size), clamped.
+  std::int64_t cell_of(double x) const;
   std::size_t table_size() const { return m_stamp.size(); }
   std::size_t entry_count() const { return m_entries.size(); }
   /// Buckets holding at least one entry in the current epoch.
@@ -99,7 +102,6 @@ class SpatialHash {
     std::uint32_t item;
     std::uint32_t bucket;
   };
-  std::int64_t cell_of(double x) const;
   void check_box(std::int64_t ni, std::int64_t nj, std::int64_t nk) const;
   std::size_t bucket_of(std::int64_t i, std::int64_t j, std::int64_t k) const {
     return static_cast<std::size_t>(hash_cell(m_function, i, j, k) % m_stamp.size());

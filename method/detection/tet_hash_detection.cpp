@@ -11,6 +11,18 @@ namespace {
 
 bool incident(const Tet& t, std::int32_t v) { return t[0] == v || t[1] == v || t[2] == v || t[3] == v; }
 
+void tet_box(const Body& body, const Tet& tet, Vec3& lo, Vec3& hi) {
+  lo = hi = body.x_m[tet[0]];
+  for (int k = 1; k < 4; ++k) {
+    lo = lo.cwiseMin(body.x_m[tet[k]]);
+    hi = hi.cwiseMax(body.x_m[tet[k]]);
+  }
+}
+
+// Whether a body's positions can change after the hash: a fixed passive body
+// never moves, so refreshing its tets would find nothing.
+bool can_move(const Body& body) { return !body.passive || body.trajectory || body.latent; }
+
 Contact make_contact(const World& world, std::int32_t object, std::int32_t vertex, std::int32_t other,
                      std::int32_t tet) {
   const auto& x = world.bodies[other].x_m;
@@ -53,6 +65,55 @@ void TetHashDetector::begin_hash() {
   m_hash.begin_epoch();
   m_hash_body = 0;
   m_hash_tet = 0;
+  m_overflow_active = false;
+  m_overflow_tets = 0;
+}
+
+void TetHashDetector::enable_refresh() {
+  if (!m_hashed_cells.empty()) return;
+  m_hashed_cells.assign(6 * m_tet_lo.size(), 0);
+  m_overflow = SpatialHash(m_hash.cell_size_m(), m_hash.table_size(), m_hash.function());
+}
+
+void TetHashDetector::begin_refresh() {
+  m_overflow.begin_epoch();
+  m_overflow_active = false;
+  m_overflow_tets = 0;
+  m_hash_body = 0;
+  m_hash_tet = 0;
+}
+
+std::uint64_t TetHashDetector::refresh_some_tets(const World& world, const CollisionPairs& pairs,
+                                                 std::size_t max_tets, bool& done) {
+  std::uint64_t work = 0;
+  std::size_t visited = 0;
+  for (; m_hash_body < world.bodies.size(); ++m_hash_body, m_hash_tet = 0) {
+    const Body& body = world.bodies[m_hash_body];
+    if (!pairs.has_partner(m_hash_body) || !can_move(body)) continue;
+    const std::vector<char>& degenerate = body.mesh->is_degenerate;
+    for (; m_hash_tet < body.mesh->tet_count(); ++m_hash_tet) {
+      if (visited == max_tets) {
+        done = false;
+        return work;
+      }
+      ++visited;
+      const std::size_t t = m_hash_tet;
+      if (degenerate[t]) continue;
+      const std::uint32_t id = m_body_tet_offset[m_hash_body] + static_cast<std::uint32_t>(t);
+      tet_box(body, body.mesh->tets[t], m_tet_lo[id], m_tet_hi[id]);  // queries reject with the current box
+      work += work::kTetBox;
+      const std::int64_t* cells = &m_hashed_cells[6 * std::size_t(id)];
+      bool inside = true;
+      for (int a = 0; a < 3; ++a)
+        inside = inside && m_hash.cell_of(m_tet_lo[id][a]) >= cells[a] && m_hash.cell_of(m_tet_hi[id][a]) <= cells[3 + a];
+      if (inside) continue;
+      work += work::kCellInsert * m_overflow.insert_box(m_tet_lo[id], m_tet_hi[id], id);
+      ++m_overflow_tets;
+    }
+  }
+  m_overflow_active = m_overflow_tets > 0;
+  done = true;
+  return work;
 }
 
 std::uint64_t TetHashDetector::hash_some_tets(const World& world, const CollisionPairs& pairs, std::size_t max_tets,
@@ -71,16 +132,18 @@ std::uint64_t TetHashDetector::hash_some_tets(const World& world, const Collisio
       ++visited;
       const std::size_t t = m_hash_tet;
       if (degenerate[t]) continue;
-      const Tet& tet = body.mesh->tets[t];
-      Vec3 lo = body.x_m[tet[0]], hi = lo;
-      for (int k = 1; k < 4; ++k) {
-        lo = lo.cwiseMin(body.x_m[tet[k]]);
-        hi = hi.cwiseMax(body.x_m[tet[k]]);
-      }
       const std::uint32_t id = m_body_tet_offset[m_hash_body] + static_cast<std::uint32_t>(t);
-      m_tet_lo[id] = lo;
-      m_tet_hi[id] = hi;
+      Vec3& lo = m_tet_lo[id];
+      Vec3& hi = m_tet_hi[id];
+      tet_box(body, body.mesh->tets[t], lo, hi);
       work += work::kCellInsert * m_hash.insert_box(lo, hi, id);
+      if (!m_hashed_cells.empty()) {
+        std::int64_t* cells = &m_hashed_cells[6 * std::size_t(id)];
+        for (int a = 0; a < 3; ++a) {
+          cells[a] = m_hash.cell_of(lo[a]);
+          cells[3 + a] = m_hash.cell_of(hi[a]);
+        }
+      }
     }
   }
   done = true;
@@ -114,6 +177,13 @@ std::optional<Contact> TetHashDetector::query_point(const World& world, const Co
   };
   if (margin_m > 0.0) work += m_hash.for_each_in_box(p - grow, p + grow, test) - 1;  // a unit a further cell
   else m_hash.for_each_in_cell(p, test);
+  if (m_overflow_active) {  // a unit a cell of the overflow
+    if (margin_m > 0.0) work += m_overflow.for_each_in_box(p - grow, p + grow, test);
+    else {
+      m_overflow.for_each_in_cell(p, test);
+      work += work::kPointQuery;
+    }
+  }
   if (best == UINT32_MAX) return std::nullopt;
   const std::int32_t other = m_owner[best];
   return make_contact(world, object, vertex, other, static_cast<std::int32_t>(best - m_body_tet_offset[other]));

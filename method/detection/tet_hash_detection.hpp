@@ -9,6 +9,16 @@
 ///      whenever positions do not change in between. Tets hashed in an earlier
 ///      step keep that step's AABB, as the whole hash does in the paper's
 ///      schedule once the cycle spans steps;
+///   1b. (setting rehash_stale, ours) refresh: once the table is older than
+///      the positions, begin_refresh() and refresh_some_tets() revisit every
+///      tet of a body that can move, store its current AABB, and enter into a
+///      second, small table (the overflow) each tet whose current AABB
+///      reaches a cell outside the cells it was hashed in; build the overflow
+///      (mutable_overflow()), then queries search both tables. After a
+///      complete pass, with positions unchanged since, query_point() finds
+///      exactly what a fresh hash_tets() would (brute_force_query_point()'s
+///      points): a tet holding p covers p's cell with its current AABB, so it
+///      is in the main table's bucket (cells unchanged) or the overflow's;
 ///   2. query_point(): one vertex is hashed; for each tet in its bucket: skip
 ///      pairs that are not enabled and tets incident to the vertex
 ///      (self-collision), reject by the stored AABB, then the exact perturbed
@@ -44,6 +54,21 @@ class TetHashDetector {
   void begin_hash();
   std::uint64_t hash_some_tets(const World& world, const CollisionPairs& pairs, std::size_t max_tets, bool& done);
   SpatialHash& mutable_hash() { return m_hash; }
+  /// Makes refreshing possible: from the next hash on, every tet's cells are
+  /// kept (48 bytes a tet) and the overflow table is allocated.
+  void enable_refresh();
+  /// Stage 1b in pieces (see above): begin_refresh() empties the overflow;
+  /// each refresh_some_tets() revisits the next `max_tets` tets (hash order;
+  /// tets of bodies that cannot move are skipped uncharged) and returns their
+  /// work: work::kTetBox a tet, work::kCellInsert an overflow cell; `done`
+  /// after the last; then build the overflow (mutable_overflow().begin_build(),
+  /// build_some(), or build()) before the next query. begin_hash() drops
+  /// the overflow.
+  void begin_refresh();
+  std::uint64_t refresh_some_tets(const World& world, const CollisionPairs& pairs, std::size_t max_tets, bool& done);
+  SpatialHash& mutable_overflow() { return m_overflow; }
+  /// Tets in the overflow of the last refresh (0 without one).
+  std::size_t overflow_tets() const { return m_overflow_tets; }
   /// Stage 2 for one vertex; adds its work units to `work`. `margin_m` > 0
   /// (widened query): tets may have moved up to that far (m, max norm) since
   /// they were hashed, so every cell within margin_m of the point is
@@ -57,12 +82,16 @@ class TetHashDetector {
 
  private:
   SpatialHash m_hash;
+  SpatialHash m_overflow;                             // refresh only; allocated by the first begin_refresh()
+  bool m_overflow_active = false;                     // queries search m_overflow too
+  std::size_t m_overflow_tets = 0;
+  std::vector<std::int64_t> m_hashed_cells;           // per global tet: cell range it was hashed in (refresh only)
   std::vector<std::uint32_t> m_body_tet_offset;       // global tet id = offset[body] + tet
   std::vector<std::int32_t> m_owner;                  // global tet id -> body
   std::vector<Vec3> m_tet_lo, m_tet_hi;               // AABBs at hashing time
   std::vector<std::uint32_t> m_tested;                // per global tet: last query that tested it
   std::uint32_t m_query = 0;
-  std::size_t m_hash_body = 0, m_hash_tet = 0;        // hash_some_tets()'s cursor
+  std::size_t m_hash_body = 0, m_hash_tet = 0;        // hash_some_tets()'s and refresh_some_tets()'s cursor
 };
 
 /// The O(points x tets) reference: tests the vertex against every tet of every

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <tuple>
 
 #include "method/handler/work_units.hpp"
@@ -15,9 +16,11 @@ CollisionCycle::CollisionCycle(const World& world, CollisionSettings settings, D
       m_granularity(schedule.granularity),
       m_order(schedule.order),
       m_widen_stale(schedule.widen_stale),
+      m_rehash_stale(schedule.rehash_stale && mode == DetectionMode::SpatialHash),
       m_pairs(world),
       m_detector(world, m_settings.detection),
       m_surface(world, m_settings.detection.cell_size_m, m_settings.detection.hash) {
+  if (m_rehash_stale) m_detector.enable_refresh();
   m_lookup.resize(world.bodies.size());
   for (std::size_t b = 0; b < world.bodies.size(); ++b) {
     m_lookup[b].assign(world.bodies[b].x_m.size(), -1);
@@ -43,6 +46,12 @@ void CollisionCycle::begin(const World& world) {
 void CollisionCycle::enter_detection(const World& world) {
   enter(m_mode == DetectionMode::SpatialHash ? Stage::HashTets : Stage::QueryPoints, world);
   if (m_stage == Stage::HashTets && m_granularity.fine()) m_detector.begin_hash();
+  m_hash_begin_step = world.step_index;
+}
+
+bool CollisionCycle::needs_refresh(const World& world) const {
+  return m_rehash_stale && (m_stage == Stage::QueryPoints || m_stage == Stage::BorderDepth) &&
+         m_fresh_step != world.step_index;
 }
 
 void CollisionCycle::grow_margins(const World& world) {
@@ -162,7 +171,9 @@ CostStage cost_stage(CollisionCycle::Stage stage) {
   switch (stage) {
     case S::Prioritize: return CostStage::Prioritize;
     case S::HashTets:
-    case S::BuildTetHash: return CostStage::HashTets;
+    case S::BuildTetHash:
+    case S::RefreshTets:
+    case S::BuildOverflow: return CostStage::HashTets;
     case S::QueryPoints: return CostStage::QueryPoints;
     case S::HashSurface:
     case S::BuildSurfaceHash: return CostStage::HashSurface;
@@ -189,6 +200,14 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
     since_ms = now_ms;
   };
   while (m_stage != Stage::Done && m_stage != Stage::Idle) {
+    if (needs_refresh(world)) {  // not a task: the refresh's tasks follow
+      m_resume_stage = m_stage;
+      m_resume_cursor = m_cursor;
+      m_margin_at_refresh_m = m_tet_margin_m;
+      m_detector.begin_refresh();
+      m_stage = Stage::RefreshTets;
+      close_stage(cost_stage(m_resume_stage));
+    }
     std::uint64_t work = 0;
     const CostStage task_stage = cost_stage(m_stage);
     switch (m_stage) {
@@ -200,6 +219,7 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
       case Stage::HashTets:
         if (!m_granularity.fine()) {
           work = m_detector.hash_tets(world, m_pairs);
+          m_fresh_step = world.step_index;
           enter(Stage::QueryPoints, world);
         } else {
           bool hashed = false;
@@ -211,8 +231,36 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
         }
         break;
       case Stage::BuildTetHash:
-        if (m_detector.mutable_hash().build_some(std::max<std::size_t>(1, m_granularity.build_visits_per_task))) enter(Stage::QueryPoints, world);
+        if (m_detector.mutable_hash().build_some(std::max<std::size_t>(1, m_granularity.build_visits_per_task))) {
+          m_fresh_step = m_hash_begin_step;  // tets hashed in earlier steps are stale: refreshed if so
+          enter(Stage::QueryPoints, world);
+        }
         break;
+      case Stage::RefreshTets: {
+        bool refreshed = false;
+        const std::size_t per_task =
+            m_granularity.fine() ? m_granularity.tets_per_task : std::numeric_limits<std::size_t>::max();
+        work = m_detector.refresh_some_tets(world, m_pairs, per_task, refreshed);
+        if (refreshed) {
+          m_detector.mutable_overflow().begin_build();
+          m_stage = Stage::BuildOverflow;
+        }
+        break;
+      }
+      case Stage::BuildOverflow: {
+        const std::size_t per_task =
+            m_granularity.fine() ? m_granularity.build_visits_per_task : std::numeric_limits<std::size_t>::max();
+        if (m_detector.mutable_overflow().build_some(per_task)) {
+          // A refresh that spanned steps holds its first tets' older
+          // positions; it is not restarted (that could never end): the
+          // table counts as this step's.
+          m_fresh_step = world.step_index;
+          m_tet_margin_m = std::max(0.0, m_tet_margin_m - m_margin_at_refresh_m);
+          m_stage = m_resume_stage;
+          m_cursor = m_resume_cursor;
+        }
+        break;
+      }
       case Stage::QueryPoints:
         if (m_cursor < m_queries.size()) {
           const auto [body, vertex] =
@@ -327,6 +375,8 @@ std::optional<Contact> CollisionCycle::detect(const World& world, std::int32_t b
 }
 
 std::size_t CollisionCycle::queries_done() const {
+  if (m_stage == Stage::RefreshTets || m_stage == Stage::BuildOverflow)
+    return m_resume_stage == Stage::QueryPoints ? m_resume_cursor : m_queries.size();
   if (m_stage == Stage::Idle || m_stage == Stage::Prioritize || m_stage == Stage::HashTets ||
       m_stage == Stage::BuildTetHash)
     return 0;

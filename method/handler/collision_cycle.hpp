@@ -26,6 +26,15 @@
 ///                (fine only; a layer's points then come in the order found,
 ///                which gives the same depths: no point of a layer reads another)
 ///   Forces       one penalty force per task
+///   RefreshTets  (setting rehash_stale, ours) entered before a query in a
+///                step later than the tet table's positions (QueryPoints, or
+///                BorderDepth's re-detection): every movable tet's box
+///                refreshed and the ones that left their cells entered into
+///                the overflow table (tet_hash_detection.hpp), tets_per_task
+///                tets a task (all in one task at the paper's granularity);
+///                then BuildOverflow, and the interrupted stage resumes where
+///                it stopped. Reported under hash_tets.
+///   BuildOverflow the overflow table built, as BuildTetHash
 /// A task always reads the world's current positions: work resumed in a later
 /// step uses the positions of that step. In particular a point detected in an
 /// earlier step is re-detected (one point query) before its border-edge work:
@@ -96,6 +105,15 @@ struct CycleSchedule {
   /// longer holds): uncapped, slow wide queries lengthen the cycle, which
   /// widens them further. The paper queries the point's own cell (margin 0).
   bool widen_stale = false;
+  /// Rehashed tets (setting rehash_stale), the alternative to widening for
+  /// the tet table: before the cycle queries in a step later than the one
+  /// its tet table (or last refresh) holds the positions of, it refreshes
+  /// the table (stage RefreshTets above), so queries find exactly brute
+  /// force's tets at the positions of the refresh, however far anything
+  /// moved. The surface table is not refreshed (widen_stale covers it). With
+  /// widen_stale too, a completed refresh takes the motion before it off
+  /// the tet margin.
+  bool rehash_stale = false;
 };
 
 class CollisionCycle {
@@ -112,6 +130,8 @@ class CollisionCycle {
     Propagate,
     BuildLayer,
     Forces,
+    RefreshTets,
+    BuildOverflow,
     Done
   };
 
@@ -154,6 +174,7 @@ class CollisionCycle {
   void prioritize(const World& world);
   void enter_detection(const World& world);
   void grow_margins(const World& world);
+  bool needs_refresh(const World& world) const;
   void restore_index_order();
   void start_layer_scan();
   bool scan_layer_some(const World& world, std::size_t max_contacts);
@@ -163,6 +184,12 @@ class CollisionCycle {
   TaskGranularity m_granularity;
   WorkOrder m_order;
   bool m_widen_stale;
+  bool m_rehash_stale;
+  std::int64_t m_fresh_step = -1;  // rehash_stale: the step whose positions the tet table (or last refresh) holds
+  std::int64_t m_hash_begin_step = -1;
+  double m_margin_at_refresh_m = 0.0;  // the tet margin when the running refresh began
+  Stage m_resume_stage = Stage::Idle;  // what a refresh interrupted, and its cursor
+  std::size_t m_resume_cursor = 0;
   double m_tet_margin_m = 0.0, m_surface_margin_m = 0.0;
   std::int64_t m_margin_step = 0;  // world.step_index the margins are up to date with
   std::vector<std::uint32_t> m_query_order;  // FastestFirst: indices into m_queries, fastest first

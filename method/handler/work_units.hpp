@@ -10,6 +10,7 @@ namespace tcb::work {
 
 inline constexpr std::uint64_t kCellInsert = 1;     ///< one tet or triangle entered into one hash cell
 inline constexpr std::uint64_t kPointQuery = 1;     ///< hashing one point (plus one per candidate below)
+inline constexpr std::uint64_t kTetBox = 1;        ///< one tet's box recomputed and checked against its cells (rehash_stale)
 inline constexpr std::uint64_t kCandidate = 1;      ///< one point-in-tet or edge-triangle test
 inline constexpr std::uint64_t kBorderPoint = 1;    ///< one colliding point's border-edge work (plus candidates)
 inline constexpr std::uint64_t kPropagation = 1;    ///< one propagated point (plus one per neighbour read)

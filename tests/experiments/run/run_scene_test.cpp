@@ -283,13 +283,21 @@ TEST_CASE("without contacts between bodies implicit and explicit response are th
 }
 
 TEST_CASE("under a work budget two runs are identical apart from timings", "[run]") {
-  // The paper's task granularity, our fine tasks (resumable hashing), and our fastest-first order.
-  for (const auto& [method, fine] : std::vector<std::pair<std::string, bool>>{
-           {"interruptible", false}, {"interruptible", true}, {"interruptible_prioritized", false}}) {
-  INFO(method << " fine_tasks " << fine);
+  // The paper's task granularity, our fine tasks (resumable hashing), with
+  // rehashed stale tets, and our fastest-first order.
+  struct Case {
+    std::string method;
+    bool fine, rehash;
+  };
+  for (const auto& [method, fine, rehash] : std::vector<Case>{{"interruptible", false, false},
+                                                             {"interruptible", true, false},
+                                                             {"interruptible", true, true},
+                                                             {"interruptible_prioritized", false, false}}) {
+  INFO(method << " fine_tasks " << fine << " rehash_stale " << rehash);
   const fs::path a = fresh_dir("work_a"), b = fresh_dir("work_b");
   const SceneDesc scene = load_scene_file(resolve_scene("plates20", default_scene_dirs()),
-                                          {"method." + method + ".fine_tasks=" + (fine ? "true" : "false")});
+                                          {"method." + method + ".fine_tasks=" + (fine ? "true" : "false"),
+                                           "method." + method + ".rehash_stale=" + (rehash ? "true" : "false")});
   for (const auto& dir : {a, b}) {
     RunOptions options;
     options.method = method;
@@ -316,6 +324,7 @@ TEST_CASE("under a work budget two runs are identical apart from timings", "[run
   CHECK(run["budget"]["value"] == 20000);
   CHECK(run["summary"]["cycle_steps"]["max"].get<double>() > 1.0);
   CHECK(run["settings"]["fine_tasks"] == fine);
+  CHECK(run["settings"]["rehash_stale"] == rehash);
   // The largest charge: the paper's one hashing task, or a 16-tet piece of it.
   CHECK((run["summary"]["max_task_work"].get<double>() > 10000.0) == !fine);
   fs::remove_all(a);

@@ -122,24 +122,25 @@ TEST_CASE("a wall budget's reserve lowers its limit; elapsed time is not a poll"
   CHECK(work.max_task_work() == 7);
 }
 
-TEST_CASE("widened queries find what moved since it was hashed; the paper's query misses some",
-          "[cycle][granularity]") {
+TEST_CASE("widened or rehashed queries find what moved since it was hashed; the paper's query misses some",
+          "[cycle][granularity][rehash]") {
   // Hash and build (two tasks of an all-in-one fine cycle), then move box b
-  // by 0.45 cell (under the margin's cap of half a cell) as one step of 1 ms
-  // would, then query: the hash holds b's tets where they were.
+  // by `cells` cells as one step of 1 ms would, then query: the hash holds
+  // b's tets where they were.
   const test::TestScene scene = test::collision_scenes()[0].second;
-  const auto points_after_move = [&](bool widen) {
+  const auto points_after_move = [&](bool widen, bool rehash, double cells) {
     World world = build_world(scene);
     CollisionCycle cycle(world, test::settings_of(world, scene), DetectionMode::SpatialHash,
                          {.granularity = {std::size_t{1} << 30, std::size_t{1} << 30, std::size_t{1} << 30},
-                          .widen_stale = widen});
+                          .widen_stale = widen,
+                          .rehash_stale = rehash});
     cycle.begin(world);
     for (int task = 0; task < 2; ++task) {
       Budget zero = Budget::work_units(0);
       REQUIRE_FALSE(cycle.advance(world, zero));
     }
     REQUIRE(cycle.stage() == CollisionCycle::Stage::QueryPoints);
-    const Vec3 move(0.45 * cycle.settings().detection.cell_size_m, 0.0, 0.0);
+    const Vec3 move(cells * cycle.settings().detection.cell_size_m, 0.0, 0.0);
     for (std::size_t v = 0; v < world.bodies[1].x_m.size(); ++v) {
       world.bodies[1].x_m[v] += move;
       world.bodies[1].v_m_per_s[v] = move / scene.world.dt_s;
@@ -147,7 +148,8 @@ TEST_CASE("widened queries find what moved since it was hashed; the paper's quer
     ++world.step_index;
     Budget unlimited = Budget::unlimited();
     REQUIRE(cycle.advance(world, unlimited));
-    if (widen) CHECK(cycle.tet_margin_m() == Approx(move.x()));
+    if (widen && !rehash) CHECK(cycle.tet_margin_m() == Approx(move.x()));
+    if (widen && rehash) CHECK(cycle.tet_margin_m() == 0.0);  // the refresh took the motion off
     std::set<std::tuple<int, int, int, int>> points;
     for (const Contact& c : cycle.contacts())
       if (!c.separated) points.insert({c.object, c.vertex, c.other, c.tet});
@@ -162,11 +164,58 @@ TEST_CASE("widened queries find what moved since it was hashed; the paper's quer
       }
     return std::make_pair(points, truth);
   };
-  const auto [widened, truth] = points_after_move(true);
-  const auto [paper, same_truth] = points_after_move(false);
+  // 0.45 cell: under the margin's cap of half a cell, so widening holds.
+  const auto [widened, truth] = points_after_move(true, false, 0.45);
+  const auto [paper, same_truth] = points_after_move(false, false, 0.45);
   REQUIRE(!truth.empty());
   CHECK(same_truth == truth);
   CHECK(widened == truth);
+  CHECK(points_after_move(false, true, 0.45).first == truth);
+  CHECK(points_after_move(true, true, 0.45).first == truth);
   CHECK(paper.size() < truth.size());  // stale cells and AABBs hide some
   for (const auto& p : paper) CHECK(truth.count(p) == 1);  // but what it finds is true
+  // 2.3 cells back towards box a: beyond the cap; the refresh still finds everything.
+  const auto [rehashed, far_truth] = points_after_move(false, true, -2.3);
+  const auto [far_paper, far_same_truth] = points_after_move(false, false, -2.3);
+  REQUIRE(!far_truth.empty());
+  CHECK(rehashed == far_truth);
+  CHECK(far_paper != far_truth);
+}
+
+TEST_CASE("a refresh that spans steps resumes where it stopped, then the queries resume where they stopped",
+          "[cycle][rehash]") {
+  // One task a call (a work budget of 0), 4 tets a task; the world's step
+  // index advances between calls, so every query stage is entered stale.
+  const test::TestScene scene = test::collision_scenes()[0].second;
+  World world = build_world(scene);
+  CollisionCycle cycle(world, test::settings_of(world, scene), DetectionMode::SpatialHash,
+                       {.granularity = {4, 8, 4}, .rehash_stale = true});
+  cycle.begin(world);
+  bool saw_refresh = false, resumed_mid_query = false;
+  std::size_t queries_before = 0;
+  CollisionCycle::Stage before = cycle.stage();
+  for (int call = 0; !cycle.done(); ++call) {
+    REQUIRE(call < 1000000);
+    if (call % 50 == 0) ++world.step_index;  // a new step now and then: positions unchanged
+    Budget zero = Budget::work_units(0);
+    cycle.advance(world, zero);
+    const CollisionCycle::Stage now = cycle.stage();
+    if (now == CollisionCycle::Stage::RefreshTets) {
+      saw_refresh = true;
+      CHECK(cycle.queries_done() >= queries_before);  // the queries' progress is kept
+    }
+    if (before == CollisionCycle::Stage::BuildOverflow && now == CollisionCycle::Stage::QueryPoints) {
+      CHECK(cycle.queries_done() == queries_before);
+      resumed_mid_query |= queries_before > 0;
+    }
+    if (now == CollisionCycle::Stage::QueryPoints) queries_before = cycle.queries_done();
+    before = now;
+  }
+  CHECK(saw_refresh);
+  CHECK(resumed_mid_query);
+  CollisionCycle paper(world, test::settings_of(world, scene));
+  paper.begin(world);
+  Budget unlimited = Budget::unlimited();
+  REQUIRE(paper.advance(world, unlimited));
+  CHECK(found(cycle) == found(paper));  // positions never changed: the paper's contacts and depths
 }
