@@ -40,11 +40,19 @@ const SettingSpec kRehashStale{.name = "rehash_stale",
                                               "later step: every moving tet's box, and the tets that left their "
                                               "cells entered into a second table (ours, not the paper's)"};
 
+const SettingSpec kPredictTasks{.name = "predict_tasks",
+                                .type = SettingSpec::Type::Boolean,
+                                .default_value = false,
+                                .description = "under a wall-clock budget, also stop before a task predicted (from the "
+                                               "recent times of its stage's tasks) to end past the budget, instead of "
+                                               "only after the task that reached it (ours, not the paper's)"};
+
 InterruptibleHandler::Options interruptible_options(const MethodSettings& s, std::int64_t keep_lost_cycles = 0) {
   return {.keep_lost_cycles = keep_lost_cycles,
           .schedule = {.granularity = s.boolean("fine_tasks") ? TaskGranularity::fine_tasks() : TaskGranularity{},
                        .widen_stale = s.boolean("widen_stale"),
-                       .rehash_stale = s.boolean("rehash_stale")},
+                       .rehash_stale = s.boolean("rehash_stale"),
+                       .predict_tasks = s.boolean("predict_tasks")},
           .reserve_apply = s.boolean("reserve_apply")};
 }
 
@@ -56,7 +64,7 @@ const std::vector<MethodInfo>& method_registry() {
       {.name = "interruptible",
        .description = "the paper's method: the cycle under a time budget, resumed next step, forces extrapolated "
                       "meanwhile",
-       .settings = {kFineTasks, kReserveApply, kWidenStale, kRehashStale},
+       .settings = {kFineTasks, kReserveApply, kWidenStale, kRehashStale, kPredictTasks},
        .make =
            [](const MethodSettings& s) {
              return std::make_unique<InterruptibleHandler>(Stale::Extrapolate, interruptible_options(s));
@@ -64,7 +72,7 @@ const std::vector<MethodInfo>& method_registry() {
        .uses_budget = true},
       {.name = "interruptible_no_extrapolation",
        .description = "ablation: interruptible without force extrapolation",
-       .settings = {kFineTasks, kReserveApply, kWidenStale, kRehashStale},
+       .settings = {kFineTasks, kReserveApply, kWidenStale, kRehashStale, kPredictTasks},
        .make =
            [](const MethodSettings& s) {
              return std::make_unique<InterruptibleHandler>(Stale::Nothing, interruptible_options(s));
@@ -84,7 +92,7 @@ const std::vector<MethodInfo>& method_registry() {
                                     "the paper's history"},
                     kFineTasks,
                     kReserveApply,
-                    kWidenStale, kRehashStale},
+                    kWidenStale, kRehashStale, kPredictTasks},
        .make =
            [](const MethodSettings& s) {
              return std::make_unique<InterruptibleHandler>(Stale::Track,
@@ -94,7 +102,7 @@ const std::vector<MethodInfo>& method_registry() {
       {.name = "interruptible_prioritized",
        .description = "variant (not in the paper; its future work): interruptible, but each cycle queries the "
                       "fastest points first, so they get their depth and force first",
-       .settings = {kFineTasks, kReserveApply, kWidenStale, kRehashStale},
+       .settings = {kFineTasks, kReserveApply, kWidenStale, kRehashStale, kPredictTasks},
        .make =
            [](const MethodSettings& s) {
              InterruptibleHandler::Options options = interruptible_options(s);

@@ -48,7 +48,8 @@ class Budget {
       case Kind::Work: return static_cast<double>(m_spent) >= m_limit;
       case Kind::WallMs: {
         const double now = m_clock();
-        m_max_gap_ms = std::max(m_max_gap_ms, now - m_last_poll_ms);
+        m_last_gap_ms = now - m_last_poll_ms;
+        m_max_gap_ms = std::max(m_max_gap_ms, m_last_gap_ms);
         m_last_poll_ms = now;
         ++m_polls;
         return now - m_start_ms >= m_limit;
@@ -71,6 +72,16 @@ class Budget {
   }
   /// Wall budgets only (0 before the first poll and for other kinds).
   double max_poll_gap_ms() const { return m_max_gap_ms; }
+  /// Wall budgets: the interval between the last two polls of expired() (the
+  /// first from the budget's creation), that is, the last task's time when
+  /// polled after every task; 0 before the first poll and for other kinds.
+  double last_poll_gap_ms() const { return m_last_gap_ms; }
+  /// Wall budgets: whether a task of `task_ms` started at the last poll
+  /// would end past the limit. Reads no clock (the last poll's time stands
+  /// for now); false for other kinds.
+  bool would_overrun(double task_ms) const {
+    return m_kind == Kind::WallMs && m_polls > 0 && m_last_poll_ms - m_start_ms + task_ms > m_limit;
+  }
   /// How often expired() read the wall clock (wall budgets; 0 for others).
   std::uint64_t polls() const { return m_polls; }
   std::uint64_t spent() const { return m_spent; }
@@ -84,7 +95,7 @@ class Budget {
   ClockMs m_clock;
   double m_start_ms = 0.0;
   std::uint64_t m_spent = 0, m_max_charge = 0;
-  mutable double m_last_poll_ms = 0.0, m_max_gap_ms = 0.0;
+  mutable double m_last_poll_ms = 0.0, m_max_gap_ms = 0.0, m_last_gap_ms = 0.0;
   mutable std::uint64_t m_polls = 0;
 };
 

@@ -54,6 +54,7 @@
 /// are the same under both: building a table is not charged (its cost
 /// follows the inserts already charged).
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -86,8 +87,14 @@ struct TaskGranularity {
   bool fine() const { return tets_per_task > 0; }
   /// Ours. Measured (summary max_task_work): the largest task of plates20 and
   /// sneaker_grass falls from 63,000-90,000 work units (the one hashing task)
-  /// to 400-600 (one border point's depth).
-  static TaskGranularity fine_tasks() { return {16, 2048, 32}; }
+  /// to 400-600 (one border point's depth). Building a table charges no work,
+  /// so its tasks' size shows only in time.
+  /// The sizes: a build task visits its entries in random bucket order,
+  /// about three cache misses a visit, and tasks of 2048 visits took up to
+  /// 370 us on sneaker_grass (steps.csv's hash_tets time in steps that did
+  /// nothing else); hence 128. The tet tasks went from 16 tets to 4 with
+  /// them, a judgement: issue 12's note measured the two changes together.
+  static TaskGranularity fine_tasks() { return {4, 128, 32}; }
 };
 
 /// How a cycle schedules its work: the paper's by default. Every field is a
@@ -114,6 +121,15 @@ struct CycleSchedule {
   /// widen_stale too, a completed refresh takes the motion before it off
   /// the tet margin.
   bool rehash_stale = false;
+  /// Predicted stops (setting predict_tasks, ours): under a wall budget the
+  /// paper polls after a task and so overruns by the part of the last task
+  /// past the limit. With this set, after every task the cycle also stops
+  /// when the next task, predicted to take as long as the recent tasks of
+  /// its stage (per stage, an average of the measured times that forgets:
+  /// 0.8 old + 0.2 new), would end past the limit. Never before the step's
+  /// first task, so every step advances. Reads no extra clock (task times
+  /// are the gaps between the budget's polls).
+  bool predict_tasks = false;
 };
 
 class CollisionCycle {
@@ -174,6 +190,7 @@ class CollisionCycle {
   void prioritize(const World& world);
   void enter_detection(const World& world);
   void grow_margins(const World& world);
+  void warm_up(const World& world);
   bool needs_refresh(const World& world) const;
   void restore_index_order();
   void start_layer_scan();
@@ -185,6 +202,8 @@ class CollisionCycle {
   WorkOrder m_order;
   bool m_widen_stale;
   bool m_rehash_stale;
+  bool m_predict_tasks;
+  std::array<double, kCostStages> m_task_ms{};  // predict_tasks: recent task time per reported stage
   std::int64_t m_fresh_step = -1;  // rehash_stale: the step whose positions the tet table (or last refresh) holds
   std::int64_t m_hash_begin_step = -1;
   double m_margin_at_refresh_m = 0.0;  // the tet margin when the running refresh began

@@ -3,7 +3,8 @@
 /// handling. `interruptible`, the ablation `interruptible_no_extrapolation`,
 /// and our variants `interruptible_tracked` (below) and
 /// `interruptible_prioritized` (fastest points first, collision_cycle.hpp).
-/// The settings fine_tasks, reserve_apply and widen_stale (InterruptibleOptions) are ours
+/// The settings fine_tasks, reserve_apply, widen_stale, rehash_stale and
+/// predict_tasks (InterruptibleOptions) are ours
 /// too; by default every one of them keeps the paper's schedule.
 ///
 /// Every step works on the current collision cycle until the step's budget
@@ -69,7 +70,8 @@ struct InterruptibleOptions {
   /// The cycle's schedule (collision_cycle.hpp), the paper's by default: its
   /// task granularity (TaskGranularity::fine_tasks() is the setting
   /// fine_tasks), its work order (fastest first: the variant
-  /// interruptible_prioritized) and widened queries (the setting widen_stale).
+  /// interruptible_prioritized), widened queries (the setting widen_stale),
+  /// rehashed tets (rehash_stale) and predicted stops (predict_tasks).
   CycleSchedule schedule{};
   /// Under a wall budget, stop the cycle early by the time applying the
   /// forces took in recent steps (ours, the setting reserve_apply): the

@@ -1,5 +1,5 @@
 """Claims about the paper's method judge only runs with the paper's task granularity: our settings
-fine_tasks, reserve_apply, widen_stale and rehash_stale make a run ours, drawn beside the paper's, never judged as it."""
+fine_tasks, reserve_apply, widen_stale, rehash_stale and predict_tasks make a run ours, drawn beside the paper's, never judged as it."""
 import os
 import sys
 import unittest
@@ -24,6 +24,7 @@ class PaperTasksOnly(unittest.TestCase):
                 run("reserve only", "interruptible", {"fine_tasks": False, "reserve_apply": True}),
                 run("widened only", "interruptible", {"widen_stale": True}),
                 run("rehashed only", "interruptible", {"rehash_stale": True}),
+                run("predicted only", "interruptible", {"predict_tasks": True}),
                 run("before the settings existed", "interruptible", {}),
                 run("schema 1", "interruptible")]
         chosen = Select(methods=("interruptible",), settings=PAPER_TASKS)(runs)

@@ -325,7 +325,7 @@ TEST_CASE("under a work budget two runs are identical apart from timings", "[run
   CHECK(run["summary"]["cycle_steps"]["max"].get<double>() > 1.0);
   CHECK(run["settings"]["fine_tasks"] == fine);
   CHECK(run["settings"]["rehash_stale"] == rehash);
-  // The largest charge: the paper's one hashing task, or a 16-tet piece of it.
+  // The largest charge: the paper's one hashing task, or a small piece of it.
   CHECK((run["summary"]["max_task_work"].get<double>() > 10000.0) == !fine);
   fs::remove_all(a);
   fs::remove_all(b);

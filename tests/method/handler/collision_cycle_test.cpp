@@ -102,6 +102,38 @@ TEST_CASE("a ticking clock interrupts the tet hashing and resumes it next step",
   CHECK(static_cast<std::size_t>(steps) >= (tets + 3) / 4 / 3);  // 4 tets a hashing task, 3 tasks a step
 }
 
+TEST_CASE("predicted stops end the step before a task that would overrun; the paper's poll overruns",
+          "[cycle][predict]") {
+  // The clock advances 1 ms a reading. Within the hashing stage (fine, 4 tets
+  // a task) the budget reads it once a task, so every task measures 1 ms. A
+  // budget of 3.5 ms: the paper's poll stops after the task that reached it
+  // (4 tasks, 4 ms spent, 0.5 over); the prediction stops after 3 (3 ms),
+  // because a fourth would end at 4 > 3.5.
+  const test::TestScene scene = test::collision_scenes()[0].second;
+  for (const bool predict : {false, true}) {
+    INFO((predict ? "predicted" : "the paper's poll"));
+    World world = build_world(scene);
+    CollisionCycle cycle(world, test::settings_of(world, scene), DetectionMode::SpatialHash,
+                         {.granularity = {4, 8, 4}, .predict_tasks = predict});
+    double now = 0.0;
+    const ClockMs clock = [&now] { return now += 1.0; };
+    cycle.begin(world);
+    Budget zero = Budget::work_units(0);  // one task, unmeasured: a work budget reads no clock
+    REQUIRE_FALSE(cycle.advance(world, zero));
+    Budget b = Budget::wall_ms(3.5, clock);
+    const std::int64_t before = cycle.tasks_done();
+    CHECK_FALSE(cycle.advance(world, b));
+    CHECK(cycle.stage() == CollisionCycle::Stage::HashTets);
+    CHECK(cycle.tasks_done() - before == (predict ? 3 : 4));
+    CHECK(b.elapsed_ms() - 1.0 == (predict ? 3.0 : 4.0));  // elapsed_ms() itself reads the clock once
+    // A budget smaller than one task: the step's first task still runs.
+    Budget tiny = Budget::wall_ms(0.1, clock);
+    const std::int64_t at = cycle.tasks_done();
+    CHECK_FALSE(cycle.advance(world, tiny));
+    CHECK(cycle.tasks_done() - at == 1);
+  }
+}
+
 TEST_CASE("a wall budget's reserve lowers its limit; elapsed time is not a poll", "[budget]") {
   double now = 0.0;
   const ClockMs clock = [&now] { return now += 1.0; };

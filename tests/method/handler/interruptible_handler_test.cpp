@@ -127,6 +127,7 @@ TEST_CASE("interruptible with no budget gives full's forces bit for bit, in both
     settings.set("reserve_apply", fine);
     settings.set("widen_stale", fine);
     settings.set("rehash_stale", fine);
+    settings.set("predict_tasks", fine);
     auto interruptible = make_handler(name, &settings);
     full->init(a, test::settings_of(a, scene));
     interruptible->init(b, test::settings_of(b, scene));
