@@ -27,58 +27,67 @@ std::uint64_t SurfaceHash::hash_triangle(const World& world, std::int32_t body, 
   return work::kCellInsert * m_hash.insert_box(lo, hi, m_offset[body] + static_cast<std::uint32_t>(triangle));
 }
 
-std::uint64_t border_point_depth(const World& world, Contact& c, const std::vector<Contact>& contacts,
-                                 const ContactLookup& lookup, SurfaceHash& surface, double margin_m) {
-  std::uint64_t work = work::kBorderPoint;
+std::uint64_t border_edge_crossing(const World& world, const Contact& c, std::int32_t q_vertex,
+                                   const std::vector<Contact>& contacts, const ContactLookup& lookup,
+                                   SurfaceHash& surface, double margin_m, BorderSum& sum) {
+  const std::int32_t qi = lookup[c.object][q_vertex];
+  if (qi >= 0 && contacts[qi].other == c.other) return 0;  // both inside B: not a border edge
+  std::uint64_t work = 0;
   const Body& A = world.bodies[c.object];
   const Body& B = world.bodies[c.other];
   const Vec3& p = A.x_m[c.vertex];
-  double sum_w = 0.0, sum_wd = 0.0;
-  Vec3 sum_wn = Vec3::Zero(), sum_coincident = Vec3::Zero();
-  bool coincident = false;
-  for (const std::int32_t* q_it = A.mesh->vertex_neighbours.begin(c.vertex);
-       q_it != A.mesh->vertex_neighbours.end(c.vertex); ++q_it) {
-    const std::int32_t qi = lookup[c.object][*q_it];
-    if (qi >= 0 && contacts[qi].other == c.other) continue;  // both inside B: not a border edge
-    const Vec3& q = A.x_m[*q_it];
-    double best_t = -1.0;
-    Vec3 best_normal = Vec3::Zero();
-    const Vec3 grow = Vec3::Constant(margin_m);
-    surface.for_each_candidate(c.other, p.cwiseMin(q) - grow, p.cwiseMax(q) + grow, [&](std::int32_t tri) {
-      work += work::kCandidate;
-      const Triangle& f = B.mesh->surface[tri];
-      const Vec3 &a = B.x_m[f[0]], &b = B.x_m[f[1]], &cc = B.x_m[f[2]];
-      if (!segment_crosses_triangle_perturbed(p, q, a, b, cc)) return;
-      const double t = segment_plane_parameter(p, q, a, b, cc);
-      if (t > best_t) {
-        best_t = t;
-        best_normal = (b - a).cross(cc - a).normalized();
-      }
-    });
-    if (best_t < 0.0) continue;  // no crossing found through this edge
-    const Vec3 x = p + best_t * (q - p);
-    const double dist2 = (x - p).squaredNorm();
-    const double w = 1.0 / dist2;
-    if (!std::isfinite(w)) {
-      coincident = true;
-      sum_coincident += best_normal;
-      continue;
+  const Vec3& q = A.x_m[q_vertex];
+  double best_t = -1.0;
+  Vec3 best_normal = Vec3::Zero();
+  const Vec3 grow = Vec3::Constant(margin_m);
+  surface.for_each_candidate(c.other, p.cwiseMin(q) - grow, p.cwiseMax(q) + grow, [&](std::int32_t tri) {
+    work += work::kCandidate;
+    const Triangle& f = B.mesh->surface[tri];
+    const Vec3 &a = B.x_m[f[0]], &b = B.x_m[f[1]], &cc = B.x_m[f[2]];
+    if (!segment_crosses_triangle_perturbed(p, q, a, b, cc)) return;
+    const double t = segment_plane_parameter(p, q, a, b, cc);
+    if (t > best_t) {
+      best_t = t;
+      best_normal = (b - a).cross(cc - a).normalized();
     }
-    sum_w += w;
-    sum_wd += w * (x - p).dot(best_normal);
-    sum_wn += w * best_normal;
+  });
+  if (best_t < 0.0) return work;  // no crossing found through this edge
+  const Vec3 x = p + best_t * (q - p);
+  const double dist2 = (x - p).squaredNorm();
+  const double w = 1.0 / dist2;
+  if (!std::isfinite(w)) {
+    sum.coincident = true;
+    sum.coincident_normals += best_normal;
+    return work;
   }
-  if (coincident && sum_coincident.squaredNorm() > 0.0) {
+  sum.w += w;
+  sum.wd += w * (x - p).dot(best_normal);
+  sum.wn += w * best_normal;
+  return work;
+}
+
+void finish_border_depth(Contact& c, const BorderSum& sum) {
+  if (sum.coincident && sum.coincident_normals.squaredNorm() > 0.0) {
     c.depth_m = 0.0;
-    c.direction = sum_coincident.normalized();
-  } else if (sum_w > 0.0 && sum_wn.squaredNorm() > 0.0) {
-    c.depth_m = sum_wd / sum_w;
-    c.direction = sum_wn.normalized();
+    c.direction = sum.coincident_normals.normalized();
+  } else if (sum.w > 0.0 && sum.wn.squaredNorm() > 0.0) {
+    c.depth_m = sum.wd / sum.w;
+    c.direction = sum.wn.normalized();
   } else {
-    return work;  // no crossing, or normals that cancel: no border depth
+    return;  // no crossing, or normals that cancel: no border depth
   }
   c.depth_source = DepthSource::Border;
   c.layer = 0;
+}
+
+std::uint64_t border_point_depth(const World& world, Contact& c, const std::vector<Contact>& contacts,
+                                 const ContactLookup& lookup, SurfaceHash& surface, double margin_m) {
+  std::uint64_t work = work::kBorderPoint;
+  BorderSum sum;
+  const auto& adjacency = world.bodies[c.object].mesh->vertex_neighbours;
+  for (const std::int32_t* q = adjacency.begin(c.vertex); q != adjacency.end(c.vertex); ++q)
+    work += border_edge_crossing(world, c, *q, contacts, lookup, surface, margin_m, sum);
+  finish_border_depth(c, sum);
   return work;
 }
 

@@ -63,6 +63,24 @@ class SurfaceHash {
   std::uint64_t m_query = 0;
 };
 
+/// border_point_depth() in pieces, one border edge a piece, for schedules
+/// that split it (collision_cycle.hpp, fine tasks): a BorderSum starts empty,
+/// border_edge_crossing() adds edge (p, q_vertex) when it is a border edge
+/// that crosses B's surface (returns its work units: one a candidate
+/// triangle; 0 when it is not a border edge), and finish_border_depth() sets
+/// the contact's depth from the sums. Taken over p's neighbours in adjacency
+/// order, with the same positions, this is border_point_depth() bit for bit
+/// (less its work::kBorderPoint).
+struct BorderSum {
+  double w = 0.0, wd = 0.0;
+  Vec3 wn = Vec3::Zero(), coincident_normals = Vec3::Zero();
+  bool coincident = false;
+};
+std::uint64_t border_edge_crossing(const World& world, const Contact& contact, std::int32_t q_vertex,
+                                   const std::vector<Contact>& contacts, const ContactLookup& lookup,
+                                   SurfaceHash& surface, double margin_m, BorderSum& sum);
+void finish_border_depth(Contact& contact, const BorderSum& sum);
+
 /// Border-point depth of one contact (see file comment). Sets depth,
 /// direction, source Border and layer 0 when p has a border edge that crosses
 /// B's surface; leaves the contact without depth otherwise. Returns work units.

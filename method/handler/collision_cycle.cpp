@@ -139,6 +139,8 @@ void CollisionCycle::enter(Stage stage, const World& world) {
     m_surface_body = 0;
     m_surface.begin_epoch();
     m_surface_margin_m = 0.0;  // a new surface hash starts now
+  } else if (stage == Stage::BorderDepth) {
+    m_edge = 0;
   } else if (stage == Stage::Propagate) {
     m_layer = 0;
     if (m_granularity.fine()) start_layer_scan();  // stage BuildLayer
@@ -317,22 +319,49 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
         break;
       case Stage::BorderDepth:
         if (m_cursor < m_contacts.size()) {
-          Contact& c = m_contacts[m_cursor++];
-          if (c.detected_step != world.step_index) {  // positions changed since detection
-            if (const auto again = detect(world, c.object, c.vertex, work)) {
-              c.other = again->other;
-              c.tet = again->tet;
-              c.barycentric = again->barycentric;
-              c.detected_step = again->detected_step;
-            } else {
-              c.separated = true;
-              m_lookup[c.object][c.vertex] = -1;
+          Contact& c = m_contacts[m_cursor];
+          if (m_edge == 0) {  // the point's first task
+            if (c.detected_step != world.step_index) {  // positions changed since detection
+              if (const auto again = detect(world, c.object, c.vertex, work)) {
+                c.other = again->other;
+                c.tet = again->tet;
+                c.barycentric = again->barycentric;
+                c.detected_step = again->detected_step;
+              } else {
+                c.separated = true;
+                m_lookup[c.object][c.vertex] = -1;
+              }
             }
+            m_border_sum = BorderSum{};
           }
-          if (!c.separated) {
+          if (c.separated) {
+            ++m_cursor;
+          } else if (!m_granularity.fine()) {
             work += border_point_depth(world, c, m_contacts, m_lookup, m_surface, m_surface_margin_m);
             c.depth_offset_m = contact_offset_m(world, c);
             c.depth_step = world.step_index;
+            ++m_cursor;
+          } else {
+            // One border edge a task (the edges that are not border edges
+            // cost nothing and go with it); the point's depth when its last
+            // edge is done.
+            if (m_edge == 0) work += work::kBorderPoint;
+            const auto& adjacency = world.bodies[c.object].mesh->vertex_neighbours;
+            const std::int32_t* q = adjacency.begin(c.vertex) + m_edge;
+            for (bool crossed = false; !crossed && q != adjacency.end(c.vertex); ++q, ++m_edge) {
+              const std::int32_t qi = m_lookup[c.object][*q];
+              if (qi >= 0 && m_contacts[qi].other == c.other) continue;  // not a border edge
+              work += border_edge_crossing(world, c, *q, m_contacts, m_lookup, m_surface, m_surface_margin_m,
+                                           m_border_sum);
+              crossed = true;
+            }
+            if (q == adjacency.end(c.vertex)) {
+              finish_border_depth(c, m_border_sum);
+              c.depth_offset_m = contact_offset_m(world, c);
+              c.depth_step = world.step_index;
+              ++m_cursor;
+              m_edge = 0;
+            }
           }
         }
         if (m_cursor == m_contacts.size()) enter(Stage::Propagate, world);

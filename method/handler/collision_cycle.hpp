@@ -18,7 +18,10 @@
 ///                the last one builds the table (the paper's granularity), or
 ///                BuildSurfaceHash follows (fine)
 ///   BuildSurfaceHash  as BuildTetHash, for the surface table (fine only)
-///   BorderDepth  one colliding point's border-edge work per task
+///   BorderDepth  one colliding point's border-edge work per task (the
+///                paper's granularity), or one border edge per task (fine:
+///                a point's edges may then span steps, each read at the
+///                positions of its step, as the tets of a fine hash are)
 ///   Propagate    one propagated point per task, layer by layer; each layer's
 ///                points are found by one task over all contacts (the paper's
 ///                granularity) or by BuildLayer tasks (fine)
@@ -218,6 +221,8 @@ class CollisionCycle {
   Stage m_stage = Stage::Idle;
   std::int64_t m_number = 0;
   std::size_t m_cursor = 0;
+  std::size_t m_edge = 0;    // BorderDepth (fine): the current point's next neighbour
+  BorderSum m_border_sum;    // and its sums so far
   std::int64_t m_tasks = 0;
   std::vector<std::pair<std::int32_t, std::int32_t>> m_queries;    // (body, vertex) to query
   std::vector<std::int32_t> m_surface_bodies;                      // bodies whose surface is hashed

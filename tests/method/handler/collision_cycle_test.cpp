@@ -28,20 +28,28 @@ Found found(const CollisionCycle& cycle) {
   return out;
 }
 
+struct SingleTasks {
+  Found found;
+  int calls = 0;
+  std::uint64_t max_border_task_work = 0;  // the largest task of stage BorderDepth
+};
+
 // A whole cycle at fixed positions, one task a call (a work budget of 0
-// expires after every task); returns the contacts and the number of calls.
-std::pair<Found, int> cycle_in_single_tasks(const test::TestScene& scene, DetectionMode mode,
-                                            TaskGranularity granularity) {
+// expires after every task).
+SingleTasks cycle_in_single_tasks(const test::TestScene& scene, DetectionMode mode, TaskGranularity granularity) {
   World w = build_world(scene);  // never stepped: positions stay fixed
   CollisionCycle cycle(w, test::settings_of(w, scene), mode, {.granularity = granularity});
   cycle.begin(w);
-  int calls = 0;
-  for (bool done = false; !done; ++calls) {
+  SingleTasks out;
+  for (bool done = false; !done; ++out.calls) {
     Budget zero = Budget::work_units(0);
+    const bool border = cycle.stage() == CollisionCycle::Stage::BorderDepth;
     done = cycle.advance(w, zero);
-    REQUIRE(calls < 10000000);
+    if (border) out.max_border_task_work = std::max(out.max_border_task_work, zero.max_task_work());
+    REQUIRE(out.calls < 10000000);
   }
-  return {found(cycle), calls};
+  out.found = found(cycle);
+  return out;
 }
 
 
@@ -49,22 +57,28 @@ std::pair<Found, int> cycle_in_single_tasks(const test::TestScene& scene, Detect
 
 TEST_CASE("fine tasks find exactly the paper's contacts and depths, and brute force's points, for every piece size",
           "[cycle][granularity]") {
+  std::uint64_t paper_border_max = 0, fine_border_max = 0;
   for (const auto& [name, scene] : test::collision_scenes()) {
     INFO(name);
-    const auto [paper, paper_calls] = cycle_in_single_tasks(scene, DetectionMode::SpatialHash, {});
-    const auto [brute, brute_calls] = cycle_in_single_tasks(scene, DetectionMode::BruteForce, {});
-    REQUIRE(!paper.empty());
-    CHECK(paper == brute);
+    const SingleTasks paper = cycle_in_single_tasks(scene, DetectionMode::SpatialHash, {});
+    const SingleTasks brute = cycle_in_single_tasks(scene, DetectionMode::BruteForce, {});
+    REQUIRE(!paper.found.empty());
+    CHECK(paper.found == brute.found);
     for (const std::size_t tets : {std::size_t{1}, std::size_t{3}, std::size_t{16}, std::size_t{1} << 30})
       for (const std::size_t visits : {std::size_t{1}, std::size_t{5}, std::size_t{2048}})
         for (const std::size_t scan : {std::size_t{1}, std::size_t{7}, std::size_t{1} << 30}) {
           INFO("tets " << tets << ", visits " << visits << ", scan " << scan);
-          const auto [fine, fine_calls] =
-              cycle_in_single_tasks(scene, DetectionMode::SpatialHash, {tets, visits, scan});
-          CHECK(fine == paper);
-          if (tets == 1) CHECK(fine_calls > paper_calls);  // the hashing really was split
+          const SingleTasks fine = cycle_in_single_tasks(scene, DetectionMode::SpatialHash, {tets, visits, scan});
+          CHECK(fine.found == paper.found);
+          if (tets == 1) CHECK(fine.calls > paper.calls);  // the hashing really was split
+          // One border edge a task: never more than a whole point's work, and
+          // less wherever a point has several border edges.
+          CHECK(fine.max_border_task_work <= paper.max_border_task_work);
+          paper_border_max = std::max(paper_border_max, paper.max_border_task_work);
+          fine_border_max = std::max(fine_border_max, fine.max_border_task_work);
         }
   }
+  CHECK(fine_border_max < paper_border_max);  // the border work really was split
 }
 
 TEST_CASE("a ticking clock interrupts the tet hashing and resumes it next step", "[cycle][granularity]") {
