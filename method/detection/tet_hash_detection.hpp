@@ -12,8 +12,9 @@
 ///   1b. (setting rehash_stale, ours) refresh: once the table is older than
 ///      the positions, begin_refresh() and refresh_some_tets() revisit every
 ///      tet of a body that can move, store its current AABB, and enter into a
-///      second, small table (the overflow) each tet whose current AABB
-///      reaches a cell outside the cells it was hashed in; build the overflow
+///      second table (the overflow) each tet whose current AABB
+///      reaches a cell outside the cells it was hashed in (the overflow has
+///      the main table's size but holds only those tets); build the overflow
 ///      (mutable_overflow()), then queries search both tables. After a
 ///      complete pass, with positions unchanged since, query_point() finds
 ///      exactly what a fresh hash_tets() would (brute_force_query_point()'s
@@ -82,13 +83,13 @@ class TetHashDetector {
 
  private:
   SpatialHash m_hash;
-  SpatialHash m_overflow;                             // refresh only; allocated by the first begin_refresh()
+  SpatialHash m_overflow;                             // refresh only; allocated by enable_refresh()
   bool m_overflow_active = false;                     // queries search m_overflow too
   std::size_t m_overflow_tets = 0;
   std::vector<std::int64_t> m_hashed_cells;           // per global tet: cell range it was hashed in (refresh only)
   std::vector<std::uint32_t> m_body_tet_offset;       // global tet id = offset[body] + tet
   std::vector<std::int32_t> m_owner;                  // global tet id -> body
-  std::vector<Vec3> m_tet_lo, m_tet_hi;               // AABBs at hashing time
+  std::vector<Vec3> m_tet_lo, m_tet_hi;               // AABBs at hashing time, or at the last refresh
   std::vector<std::uint32_t> m_tested;                // per global tet: last query that tested it
   std::uint32_t m_query = 0;
   std::size_t m_hash_body = 0, m_hash_tet = 0;        // hash_some_tets()'s and refresh_some_tets()'s cursor

@@ -57,7 +57,8 @@ void CollisionCycle::warm_up(const World& world) {
 }
 
 void CollisionCycle::begin(const World& world) {
-  m_tet_margin_m = m_surface_margin_m = 0.0;  // a new tet hash starts now
+  m_tet_margin_m = m_surface_margin_m = m_tet_motion_m = 0.0;  // a new tet hash starts now
+  m_refresh_wait = false;
   m_margin_step = world.step_index;
   for (const Contact& c : m_contacts) m_lookup[c.object][c.vertex] = -1;
   m_contacts.clear();
@@ -74,8 +75,13 @@ void CollisionCycle::enter_detection(const World& world) {
 }
 
 bool CollisionCycle::needs_refresh(const World& world) const {
-  return m_rehash_stale && (m_stage == Stage::QueryPoints || m_stage == Stage::BorderDepth) &&
-         m_fresh_step != world.step_index;
+  if (!m_rehash_stale || m_refresh_wait || m_fresh_step == world.step_index) return false;
+  // Only before a task that queries the tet table: a point query, or the
+  // re-detection that opens a contact's border work.
+  if (m_stage == Stage::QueryPoints) return m_cursor < m_queries.size();
+  if (m_stage != Stage::BorderDepth || m_cursor >= m_contacts.size() || m_edge != 0) return false;
+  const Contact& c = m_contacts[m_cursor];
+  return !c.separated && c.detected_step != world.step_index;
 }
 
 void CollisionCycle::grow_margins(const World& world) {
@@ -91,7 +97,8 @@ void CollisionCycle::grow_margins(const World& world) {
   // grows, its queries get wider still (measured on plates20: overshoot p99
   // 590 %). Beyond the cap the bound no longer holds.
   const double cap = 0.5 * m_settings.detection.cell_size_m;
-  m_tet_margin_m = std::min(m_tet_margin_m + moved, cap);
+  m_tet_motion_m += moved;
+  m_tet_margin_m = std::min(m_tet_motion_m, cap);
   m_surface_margin_m = std::min(m_surface_margin_m + moved, cap);
   m_margin_step = world.step_index;
 }
@@ -229,13 +236,14 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
     if (needs_refresh(world)) {  // not a task: the refresh's tasks follow
       m_resume_stage = m_stage;
       m_resume_cursor = m_cursor;
-      m_margin_at_refresh_m = m_tet_margin_m;
+      m_motion_at_refresh_m = m_tet_motion_m;
       m_detector.begin_refresh();
       m_stage = Stage::RefreshTets;
       close_stage(cost_stage(m_resume_stage));
     }
     std::uint64_t work = 0;
     const CostStage task_stage = cost_stage(m_stage);
+    if (m_stage == Stage::QueryPoints || m_stage == Stage::BorderDepth) m_refresh_wait = false;
     switch (m_stage) {
       case Stage::Prioritize:
         prioritize(world);
@@ -281,9 +289,12 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
           // positions; it is not restarted (that could never end): the
           // table counts as this step's.
           m_fresh_step = world.step_index;
-          m_tet_margin_m = std::max(0.0, m_tet_margin_m - m_margin_at_refresh_m);
+          // The motion since the refresh began is what its boxes may miss.
+          m_tet_motion_m -= m_motion_at_refresh_m;
+          m_tet_margin_m = std::min(m_tet_motion_m, 0.5 * m_settings.detection.cell_size_m);
           m_stage = m_resume_stage;
           m_cursor = m_resume_cursor;
+          m_refresh_wait = true;  // the resumed stage runs a task before the next refresh
         }
         break;
       }
@@ -414,8 +425,12 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
     if (m_stage == Stage::Done) break;
     bool stop = budget.expired();  // an interruption point
     if (m_predict_tasks && budget.kind() == BudgetKind::WallMs) {
-      double& recent = m_task_ms[static_cast<std::size_t>(task_stage)];
-      recent = recent == 0.0 ? budget.last_poll_gap_ms() : 0.8 * recent + 0.2 * budget.last_poll_gap_ms();
+      // The first poll's gap also holds the handler's work before the cycle
+      // (begin(), the margins' scan): not a task's time.
+      if (budget.polls() > 1) {
+        double& recent = m_task_ms[static_cast<std::size_t>(task_stage)];
+        recent = recent == 0.0 ? budget.last_poll_gap_ms() : 0.8 * recent + 0.2 * budget.last_poll_gap_ms();
+      }
       stop = stop || budget.would_overrun(m_task_ms[static_cast<std::size_t>(cost_stage(m_stage))]);
     }
     if (stop) {

@@ -29,9 +29,12 @@
 ///                (fine only; a layer's points then come in the order found,
 ///                which gives the same depths: no point of a layer reads another)
 ///   Forces       one penalty force per task
-///   RefreshTets  (setting rehash_stale, ours) entered before a query in a
-///                step later than the tet table's positions (QueryPoints, or
-///                BorderDepth's re-detection): every movable tet's box
+///   RefreshTets  (setting rehash_stale, ours) entered before a task that
+///                queries the tet table (a point query, or the re-detection
+///                that opens a contact's border work) in a step later than
+///                the table's positions, at most once a step and never twice
+///                without a task of the interrupted stage in between (so a
+///                refresh longer than a step cannot stall the cycle): every movable tet's box
 ///                refreshed and the ones that left their cells entered into
 ///                the overflow table (tet_hash_detection.hpp), tets_per_task
 ///                tets a task (all in one task at the paper's granularity);
@@ -90,7 +93,7 @@ struct TaskGranularity {
   bool fine() const { return tets_per_task > 0; }
   /// Ours. Measured (summary max_task_work): the largest task of plates20 and
   /// sneaker_grass falls from 63,000-90,000 work units (the one hashing task)
-  /// to 400-600 (one border point's depth). Building a table charges no work,
+  /// to 80-200 (one border edge). Building a table charges no work,
   /// so its tasks' size shows only in time.
   /// The sizes: a build task visits its entries in random bucket order,
   /// about three cache misses a visit, and tasks of 2048 visits took up to
@@ -120,9 +123,11 @@ struct CycleSchedule {
   /// its tet table (or last refresh) holds the positions of, it refreshes
   /// the table (stage RefreshTets above), so queries find exactly brute
   /// force's tets at the positions of the refresh, however far anything
-  /// moved. The surface table is not refreshed (widen_stale covers it). With
-  /// widen_stale too, a completed refresh takes the motion before it off
-  /// the tet margin.
+  /// moved. A refresh that spans steps holds each tet at the positions of
+  /// the step that revisited it, and nothing covers the motion since unless
+  /// widen_stale is set too: then the tet margin after a refresh is the
+  /// motion since the refresh began. The surface table is not refreshed
+  /// (widen_stale covers it).
   bool rehash_stale = false;
   /// Predicted stops (setting predict_tasks, ours): under a wall budget the
   /// paper polls after a task and so overruns by the part of the last task
@@ -131,7 +136,8 @@ struct CycleSchedule {
   /// its stage (per stage, an average of the measured times that forgets:
   /// 0.8 old + 0.2 new), would end past the limit. Never before the step's
   /// first task, so every step advances. Reads no extra clock (task times
-  /// are the gaps between the budget's polls).
+  /// are the gaps between the budget's polls; the step's first gap, which
+  /// also holds the handler's work before the cycle, is not counted).
   bool predict_tasks = false;
 };
 
@@ -209,7 +215,9 @@ class CollisionCycle {
   std::array<double, kCostStages> m_task_ms{};  // predict_tasks: recent task time per reported stage
   std::int64_t m_fresh_step = -1;  // rehash_stale: the step whose positions the tet table (or last refresh) holds
   std::int64_t m_hash_begin_step = -1;
-  double m_margin_at_refresh_m = 0.0;  // the tet margin when the running refresh began
+  double m_tet_motion_m = 0.0;         // widen_stale: the uncapped motion bound behind m_tet_margin_m
+  double m_motion_at_refresh_m = 0.0;  // m_tet_motion_m when the running refresh began
+  bool m_refresh_wait = false;         // a refresh just ended: one task of the resumed stage first
   Stage m_resume_stage = Stage::Idle;  // what a refresh interrupted, and its cursor
   std::size_t m_resume_cursor = 0;
   double m_tet_margin_m = 0.0, m_surface_margin_m = 0.0;

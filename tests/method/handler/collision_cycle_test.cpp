@@ -265,3 +265,38 @@ TEST_CASE("a refresh that spans steps resumes where it stopped, then the queries
   REQUIRE(paper.advance(world, unlimited));
   CHECK(found(cycle) == found(paper));  // positions never changed: the paper's contacts and depths
 }
+
+TEST_CASE("a refresh longer than a step cannot stall the cycle: one task a step, a new step every task",
+          "[cycle][rehash]") {
+  // A work budget of 0 runs one task a step, and every call is a new step, so
+  // the table is stale before every query. Each refresh takes many steps;
+  // still a task of the interrupted stage runs between two refreshes, and
+  // the cycle ends with the paper's contacts (positions never change).
+  for (const TaskGranularity granularity : {TaskGranularity{}, TaskGranularity{4, 8, 4}}) {
+    INFO("tets a task " << granularity.tets_per_task);
+    const test::TestScene scene = test::collision_scenes()[0].second;
+    World world = build_world(scene);
+    CollisionCycle cycle(world, test::settings_of(world, scene), DetectionMode::SpatialHash,
+                         {.granularity = granularity, .rehash_stale = true});
+    cycle.begin(world);
+    int refreshes = 0;
+    CollisionCycle::Stage before = cycle.stage();
+    for (int call = 0; !cycle.done(); ++call) {
+      REQUIRE(call < 2000000);
+      ++world.step_index;
+      Budget zero = Budget::work_units(0);
+      cycle.advance(world, zero);
+      const auto refreshing = [](CollisionCycle::Stage s) {
+        return s == CollisionCycle::Stage::RefreshTets || s == CollisionCycle::Stage::BuildOverflow;
+      };
+      refreshes += refreshing(cycle.stage()) && !refreshing(before);
+      before = cycle.stage();
+    }
+    CHECK(refreshes > 1);
+    CollisionCycle paper(world, test::settings_of(world, scene));
+    paper.begin(world);
+    Budget unlimited = Budget::unlimited();
+    REQUIRE(paper.advance(world, unlimited));
+    CHECK(found(cycle) == found(paper));
+  }
+}
