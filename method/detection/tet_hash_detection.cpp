@@ -83,13 +83,14 @@ void TetHashDetector::begin_refresh() {
   m_hash_tet = 0;
 }
 
-std::uint64_t TetHashDetector::refresh_some_tets(const World& world, const CollisionPairs& pairs,
-                                                 std::size_t max_tets, bool& done) {
+template <typename Visit>
+std::uint64_t TetHashDetector::walk_tets(const World& world, const CollisionPairs& pairs, bool movable_only,
+                                         std::size_t max_tets, bool& done, Visit&& visit) {
   std::uint64_t work = 0;
   std::size_t visited = 0;
   for (; m_hash_body < world.bodies.size(); ++m_hash_body, m_hash_tet = 0) {
     const Body& body = world.bodies[m_hash_body];
-    if (!pairs.has_partner(m_hash_body) || !can_move(body)) continue;
+    if (!pairs.has_partner(m_hash_body) || (movable_only && !can_move(body))) continue;
     const std::vector<char>& degenerate = body.mesh->is_degenerate;
     for (; m_hash_tet < body.mesh->tet_count(); ++m_hash_tet) {
       if (visited == max_tets) {
@@ -100,54 +101,43 @@ std::uint64_t TetHashDetector::refresh_some_tets(const World& world, const Colli
       const std::size_t t = m_hash_tet;
       if (degenerate[t]) continue;
       const std::uint32_t id = m_body_tet_offset[m_hash_body] + static_cast<std::uint32_t>(t);
-      tet_box(body, body.mesh->tets[t], m_tet_lo[id], m_tet_hi[id]);  // queries reject with the current box
-      work += work::kTetBox;
-      const std::int64_t* cells = &m_hashed_cells[6 * std::size_t(id)];
-      bool inside = true;
-      for (int a = 0; a < 3; ++a)
-        inside = inside && m_hash.cell_of(m_tet_lo[id][a]) >= cells[a] && m_hash.cell_of(m_tet_hi[id][a]) <= cells[3 + a];
-      if (inside) continue;
-      work += work::kCellInsert * m_overflow.insert_box(m_tet_lo[id], m_tet_hi[id], id);
-      ++m_overflow_tets;
+      tet_box(body, body.mesh->tets[t], m_tet_lo[id], m_tet_hi[id]);
+      work += visit(id);
     }
   }
-  m_overflow_active = m_overflow_tets > 0;
   done = true;
+  return work;
+}
+
+std::uint64_t TetHashDetector::refresh_some_tets(const World& world, const CollisionPairs& pairs,
+                                                 std::size_t max_tets, bool& done) {
+  // The current box is stored either way: queries reject with it.
+  const std::uint64_t work = walk_tets(world, pairs, true, max_tets, done, [&](std::uint32_t id) {
+    const std::int64_t* cells = &m_hashed_cells[6 * std::size_t(id)];
+    bool inside = true;
+    for (int a = 0; a < 3; ++a)
+      inside = inside && m_hash.cell_of(m_tet_lo[id][a]) >= cells[a] && m_hash.cell_of(m_tet_hi[id][a]) <= cells[3 + a];
+    if (inside) return work::kTetBox;
+    ++m_overflow_tets;
+    return work::kTetBox + work::kCellInsert * m_overflow.insert_box(m_tet_lo[id], m_tet_hi[id], id);
+  });
+  if (done) m_overflow_active = m_overflow_tets > 0;
   return work;
 }
 
 std::uint64_t TetHashDetector::hash_some_tets(const World& world, const CollisionPairs& pairs, std::size_t max_tets,
                                               bool& done) {
-  std::uint64_t work = 0;
-  std::size_t visited = 0;
-  for (; m_hash_body < world.bodies.size(); ++m_hash_body, m_hash_tet = 0) {
-    if (!pairs.has_partner(m_hash_body)) continue;
-    const Body& body = world.bodies[m_hash_body];
-    const std::vector<char>& degenerate = body.mesh->is_degenerate;
-    for (; m_hash_tet < body.mesh->tet_count(); ++m_hash_tet) {
-      if (visited == max_tets) {
-        done = false;
-        return work;
-      }
-      ++visited;
-      const std::size_t t = m_hash_tet;
-      if (degenerate[t]) continue;
-      const std::uint32_t id = m_body_tet_offset[m_hash_body] + static_cast<std::uint32_t>(t);
-      Vec3& lo = m_tet_lo[id];
-      Vec3& hi = m_tet_hi[id];
-      tet_box(body, body.mesh->tets[t], lo, hi);
-      work += work::kCellInsert * m_hash.insert_box(lo, hi, id);
-      if (!m_hashed_cells.empty()) {
-        std::int64_t* cells = &m_hashed_cells[6 * std::size_t(id)];
-        for (int a = 0; a < 3; ++a) {
-          cells[a] = m_hash.cell_of(lo[a]);
-          cells[3 + a] = m_hash.cell_of(hi[a]);
-        }
+  return walk_tets(world, pairs, false, max_tets, done, [&](std::uint32_t id) {
+    const std::uint64_t work = work::kCellInsert * m_hash.insert_box(m_tet_lo[id], m_tet_hi[id], id);
+    if (!m_hashed_cells.empty()) {
+      std::int64_t* cells = &m_hashed_cells[6 * std::size_t(id)];
+      for (int a = 0; a < 3; ++a) {
+        cells[a] = m_hash.cell_of(m_tet_lo[id][a]);
+        cells[3 + a] = m_hash.cell_of(m_tet_hi[id][a]);
       }
     }
-  }
-  done = true;
-  return work;
+    return work;
+  });
 }
 
 std::optional<Contact> TetHashDetector::query_point(const World& world, const CollisionPairs& pairs,

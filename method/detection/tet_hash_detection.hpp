@@ -82,6 +82,13 @@ class TetHashDetector {
   const SpatialHash& hash() const { return m_hash; }
 
  private:
+  /// hash_some_tets()'s and refresh_some_tets()'s walk: from the cursor, the
+  /// next max_tets tets (hash order) of bodies with a partner (and, if
+  /// movable_only, that can move); each non-degenerate one gets its current
+  /// AABB stored, then visit(global id) returns its work units.
+  template <typename Visit>
+  std::uint64_t walk_tets(const World& world, const CollisionPairs& pairs, bool movable_only, std::size_t max_tets,
+                          bool& done, Visit&& visit);
   SpatialHash m_hash;
   SpatialHash m_overflow;                             // refresh only; allocated by enable_refresh()
   bool m_overflow_active = false;                     // queries search m_overflow too
