@@ -181,6 +181,18 @@ class Curves(unittest.TestCase):
             self.assertIn("over 5 seeds", section.caption)
             self.assertIn("drawn thin", section.caption)
 
+    def test_scaling_exponent_fits_a_power_law(self):
+        # p50 = 2e-4 * tets^1.5 exactly: the fit finds 1.5 over the sizes run; two sizes fit nothing.
+        pts = [(n, 2e-4 * n ** 1.5, None, None, None, 1) for n in (10_000, 40_000, 1_000_000)]
+        slope, lo, hi = scaling.exponent(pts)
+        self.assertAlmostEqual(slope, 1.5, places=9)
+        self.assertEqual((lo, hi), (10_000, 1_000_000))
+        self.assertIsNone(scaling.exponent(pts[:2]))
+        # A size without a p50 is left out of the fit rather than taken as 0.
+        self.assertIsNone(scaling.exponent(pts[:2] + [(5_000, None, None, None, None, 1)]))
+        noisy = [(n, n * (1.1 if k % 2 else 0.9), None, None, None, 1) for k, n in enumerate((1e4, 1e5, 1e6, 1e7))]
+        self.assertLess(abs(scaling.exponent(noisy)[0] - 1.0), 0.05)
+
     def test_scaling_points_are_medians(self):
         runs = [run(f"4 s{s}", seed=s, overrides=JITTER_SETS + ["n=4"], tets=400,
                     handling_ms=handling(1.0 + 0.1 * s)) for s in SEEDS]

@@ -4,7 +4,11 @@ Drawn from the sweeps that declare "scaling". Only scenes run at several sizes
 (by their scene overrides) make a curve; one curve per scene, method and budget.
 A size with repeats (runs differing only by seed) is one point: the median of
 their p50 with its bootstrap 95 % interval, and the median of their p99.
+A curve of three or more sizes carries the exponent of its p50 (the slope of
+a least-squares line through log p50 against log tets) and the range it was
+fitted over, in the legend and the caption.
 """
+import math
 from collections import defaultdict
 
 from matplotlib.ticker import NullFormatter
@@ -43,16 +47,34 @@ def points(runs):
     return sorted(out, key=lambda p: p[0])
 
 
+def exponent(pts):
+    """(slope, smallest tets, largest tets) of log p50 against log tets over points (tets, p50, ...), or None
+    for fewer than three distinct sizes with a positive p50 (two points fit any power law exactly)."""
+    xy = [(math.log(p[0]), math.log(p[1])) for p in pts if p[0] > 0 and p[1] is not None and p[1] > 0]
+    if len({x for x, _ in xy}) < 3:
+        return None
+    mx = sum(x for x, _ in xy) / len(xy)
+    my = sum(y for _, y in xy) / len(xy)
+    slope = sum((x - mx) * (y - my) for x, y in xy) / sum((x - mx) ** 2 for x, _ in xy)
+    return slope, round(math.exp(min(x for x, _ in xy))), round(math.exp(max(x for x, _ in xy)))
+
+
 def draw(ctx, runs):
     runs = [r for r in runs if r.metric("handling_ms.p50") is not None and r.dynamic_tets() > 0]
     lines = curves(runs)
     if not lines:
         return ctx.missing(TITLE, "no scene of the sweeps declaring this figure was run at two or more sizes")
     fig, ax = plt.subplots(figsize=(8.5, 4))
+    fits = []
     for k, (legend, rs) in enumerate(lines.items()):
         pts = points(rs)
+        fit = exponent(pts)
+        label = f"{legend} p50"
+        if fit:
+            label += f" (exponent {fit[0]:.2f})"
+            fits.append(f"{legend}: {fit[0]:.2f} over {fit[1]}..{fit[2]} tets")
         # One colour per curve, its p99 dotted in the same colour.
-        [line] = ax.plot([p[0] for p in pts], [p[1] for p in pts], "o-", color=f"C{k % 10}", label=f"{legend} p50")
+        [line] = ax.plot([p[0] for p in pts], [p[1] for p in pts], "o-", color=f"C{k % 10}", label=label)
         for tets, p50, lo, hi, _, _ in pts:
             if lo is not None:
                 ax.errorbar(tets, p50, yerr=[[p50 - lo], [hi - p50]], color=line.get_color(), lw=0.8, capsize=2)
@@ -69,6 +91,8 @@ def draw(ctx, runs):
     scenes = ", ".join(sorted({r.scene for rs in lines.values() for r in rs}))
     return ctx.save(fig, FILE, f"{TITLE}: {scenes}",
                     "Collision handling time per step, its median (p50, solid) and p99 (dotted), against the "
-                    "number of tetrahedra of the objects that change shape (integrated or latent-driven).", [r for rs in lines.values() for r in rs],
+                    "number of tetrahedra of the objects that change shape (integrated or latent-driven)."
+                    + (" Exponent of the p50 (least-squares slope of log time against log tets): " + "; ".join(fits)
+                       + "." if fits else ""), [r for rs in lines.values() for r in rs],
                     "each point is their median (the p50's bootstrap 95 % interval as a bar; the p99 the median of "
                     "theirs)")
