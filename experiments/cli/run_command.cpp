@@ -78,6 +78,10 @@ class RunCommand final : public Command {
     app->add_option("--pin", m_pin,
                     "Pin the handling thread to this CPU (recorded in run.json; exit 2 when not allowed here)")
         ->check(whole_number(0, 4095));
+    app->add_option("--threads", m_threads,
+                    "Threads for the collision cycle's point queries (the scene's collision.threads; default 1, "
+                    "which keeps wall-clock budgets on one core; the results are the same for every count)")
+        ->check(whole_number(1, 64));
     app->add_flag("--quiet", m_quiet, "Print nothing but errors");
   }
 
@@ -85,6 +89,7 @@ class RunCommand final : public Command {
     if (m_options.record_debug && m_options.record_every <= 0)
       throw InputError("--record-debug", 0, "needs --record N (the debug buffers go into the replay's frames)");
     const auto path = resolve_scene(m_scene, default_scene_dirs());
+    if (m_threads > 0) m_options.overrides.push_back("collision.threads=" + std::to_string(m_threads));
     const SceneDesc scene = load_scene_file(path, m_options.overrides);
     if (m_steps >= 0) m_options.steps = m_steps;
     if (m_pin >= 0) m_options.pin_cpu = m_pin;
@@ -128,6 +133,7 @@ class RunCommand final : public Command {
   std::string m_scene, m_out;
   std::int64_t m_steps = -1;
   int m_pin = -1;
+  int m_threads = 0;  // 0: the scene's collision.threads
   std::string m_oracle = "off", m_overlap, m_force_reference = "off";
   std::string m_budget_ms, m_budget_work, m_seed = "0";
   bool m_quiet = false;

@@ -2,13 +2,15 @@
 // depth, propagation, forces), for the figures the collision-pipeline issue
 // reports:
 //   build/release/experiments/micro/micro_collision_cycle --benchmark_repetitions=3
-// BM_DogPair/<hash>/<cell x 100>: dog.mesh (34,072 tets, scaled to 1.34 m
+// BM_DogPair/<hash>/<cell x 100>/<threads>: dog.mesh (34,072 tets, scaled to 1.34 m
 // long) against a copy translated by half its height along y, which puts 10 %
 // of the vertices inside the other dog (1,541 of 15,460).
 // bucket_share: distinct buckets / distinct cells the tets occupy (1 = no two
 // occupied cells share a bucket; lower = more hash collisions).
-// BM_Plates20/<hash>: the plates20 scene (15,360 tets, at the origin).
-// hash: 0 = mixed (default), 1 = the paper's xor of primes.
+// BM_Plates20/<hash>/<threads>: the plates20 scene (15,360 tets, at the origin).
+// hash: 0 = mixed (default), 1 = the paper's xor of primes. threads: the
+// cycle's collision.threads (its point queries in parallel; the same contacts
+// on every count, which the counter `colliding` shows).
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -107,9 +109,10 @@ void BM_DogPair(benchmark::State& state) {
   CollisionSettings settings = resolve_collision_settings(f.world, f.scene.collision, f.scene.world.dt_s);
   settings.detection.hash = state.range(0) == 0 ? HashFunction::Mixed : HashFunction::Paper;
   settings.detection.cell_size_m = average_edge_length(f.world) * static_cast<double>(state.range(1)) / 100.0;
+  settings.threads = static_cast<int>(state.range(2));
   run_cycles(state, f, settings);
 }
-BENCHMARK(BM_DogPair)->ArgsProduct({{0, 1}, {50, 100, 200}})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DogPair)->ArgsProduct({{0, 1}, {50, 100, 200}, {1}})->Args({0, 100, 2})->Unit(benchmark::kMillisecond);
 
 void BM_Plates20(benchmark::State& state) {
   static Fixture f = [] {
@@ -120,9 +123,10 @@ void BM_Plates20(benchmark::State& state) {
   }();
   CollisionSettings settings = resolve_collision_settings(f.world, f.scene.collision, f.scene.world.dt_s);
   settings.detection.hash = state.range(0) == 0 ? HashFunction::Mixed : HashFunction::Paper;
+  settings.threads = static_cast<int>(state.range(1));
   run_cycles(state, f, settings);
 }
-BENCHMARK(BM_Plates20)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Plates20)->Args({0, 1})->Args({1, 1})->Args({0, 2})->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

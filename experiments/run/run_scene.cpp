@@ -9,6 +9,7 @@
 
 #include "baselines/registry.hpp"
 #include "experiments/metrics/meters.hpp"
+#include "experiments/run/peak_memory.hpp"
 #include "experiments/run/provenance.hpp"
 #include "experiments/results/replay_file.hpp"
 #include "experiments/run/run_record.hpp"
@@ -42,6 +43,19 @@ Json world_json(const SceneDesc& scene, const World& world) {
   }
   return Json{{"name", scene.name}, {"file", scene.path.string()}, {"ground", scene.world.ground.has_value()},
               {"objects", objects}};
+}
+
+// The process's peak resident memory by the end of the run, and per tet of the
+// world (every body's tets, passive ones too: the figure a user sizes a
+// machine by). The whole process's peak, oracle and solver included.
+Json peak_memory_json(const World& world) {
+  const std::optional<std::uint64_t> peak = peak_resident_bytes();
+  if (!peak) return nullptr;
+  std::uint64_t tets = 0;
+  for (const Body& b : world.bodies) tets += b.mesh->tet_count();
+  return Json{{"resident_bytes", *peak},
+              {"tets", tets},
+              {"bytes_per_tet", tets ? Json(static_cast<double>(*peak) / static_cast<double>(tets)) : Json(nullptr)}};
 }
 
 Json settings_json(const MethodSettings& settings) {
@@ -199,7 +213,8 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
                       {"mean_edge_m", collision.mean_edge_m},
                       {"table_size", collision.detection.table_size},
                       {"tets", collision.tets},
-                      {"hash", collision.detection.hash == HashFunction::Paper ? "paper" : "mixed"}};
+                      {"hash", collision.detection.hash == HashFunction::Paper ? "paper" : "mixed"},
+                      {"threads", collision.threads}};
   run["pin"] = options.pin_cpu ? Json(*options.pin_cpu) : Json(nullptr);
   run["oracle"] = setup.oracle.label();
   run["oracle_volume"] = setup.overlap.label();
@@ -220,6 +235,7 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
   run["status"] = outcome.status;
   run["unstable_reason"] = outcome.reason.empty() ? Json(nullptr) : Json(outcome.reason);
   run["world"] = world_json(scene, world);
+  run["peak_memory"] = peak_memory_json(world);
   run["summary"] = summary;
   if (replay) replay->finish();
   record.finish(run);

@@ -277,6 +277,7 @@ SceneDesc parse_scene(const std::string& text, const std::filesystem::path& path
         r.non_negative("response_stiffness", scene.collision.response_stiffness_n_per_m);
     scene.collision.damping_n_s_per_m = r.non_negative("damping", scene.collision.damping_n_s_per_m);
     scene.collision.friction = r.non_negative("friction", scene.collision.friction);
+    scene.collision.threads = static_cast<int>(r.integer("threads", 1, 64).value_or(1));
     if (const auto response = r.string("response")) {
       if (*response == "implicit") scene.collision.response_mode = ResponseMode::Implicit;
       else if (*response == "explicit") scene.collision.response_mode = ResponseMode::Explicit;

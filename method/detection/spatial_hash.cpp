@@ -33,7 +33,7 @@ std::uint64_t next_prime(std::uint64_t n) {
 
 SpatialHash::SpatialHash(double cell_size_m, std::size_t table_size, HashFunction function)
     : m_cell_size(cell_size_m), m_inverse_cell(1.0 / cell_size_m), m_function(function),
-      m_start(std::max<std::size_t>(table_size, 1), 0), m_count(m_start.size(), 0), m_stamp(m_start.size(), 0) {
+      m_buckets(std::max<std::size_t>(table_size, 1)) {
   if (!(cell_size_m > 0.0) || !std::isfinite(cell_size_m))
     throw std::invalid_argument("spatial hash cell size must be positive and finite");
 }
@@ -41,7 +41,7 @@ SpatialHash::SpatialHash(double cell_size_m, std::size_t table_size, HashFunctio
 void SpatialHash::begin_epoch() {
   ++m_epoch;
   if (m_epoch == 0) {  // wrapped after 2^32 epochs: reset the stamps once
-    std::fill(m_stamp.begin(), m_stamp.end(), 0);
+    for (Bucket& b : m_buckets) b.stamp = 0;
     m_epoch = 1;
   }
   m_entries.clear();
@@ -68,11 +68,12 @@ std::size_t SpatialHash::insert_box(const Vec3& lo, const Vec3& hi, std::uint32_
     for (std::int64_t j = j0; j <= j1; ++j)
       for (std::int64_t k = k0; k <= k1; ++k) {
         const std::size_t b = bucket_of(i, j, k);
-        if (m_stamp[b] != m_epoch) {
-          m_stamp[b] = m_epoch;
-          m_count[b] = 0;
+        Bucket& bucket = m_buckets[b];
+        if (bucket.stamp != m_epoch) {
+          bucket.stamp = m_epoch;
+          bucket.count = 0;
         }
-        ++m_count[b];
+        ++bucket.count;
         m_entries.push_back({item, static_cast<std::uint32_t>(b)});
         ++cells;
       }
@@ -92,7 +93,7 @@ void SpatialHash::begin_build() {
 
 bool SpatialHash::build_some(std::size_t max_visits) {
   // Counting sort by bucket over the entries only: a bucket's start is given
-  // when its first entry is met (m_start doubles as the fill cursor, so each
+  // when its first entry is met (a bucket's start doubles as the fill cursor, so each
   // start is stored as the end of its range and rewound afterwards). Three
   // passes; the cursor says where the current one stands.
   const std::size_t n = m_entries.size();
@@ -101,20 +102,20 @@ bool SpatialHash::build_some(std::size_t max_visits) {
     max_visits -= end - m_build_cursor;
     if (m_build_pass == 0) {
       for (std::size_t i = m_build_cursor; i < end; ++i) {
-        const Entry& e = m_entries[i];
-        if (m_count[e.bucket] == 0 || m_stamp[e.bucket] != m_epoch) continue;
-        m_start[e.bucket] = m_build_next;  // first time met in this pass: allocate
-        m_build_next += m_count[e.bucket];
-        m_stamp[e.bucket] = m_epoch - 1;  // mark allocated; restored in pass 2
+        Bucket& bucket = m_buckets[m_entries[i].bucket];
+        if (bucket.count == 0 || bucket.stamp != m_epoch) continue;
+        bucket.start = m_build_next;  // first time met in this pass: allocate
+        m_build_next += bucket.count;
+        bucket.stamp = m_epoch - 1;  // mark allocated; restored in pass 2
       }
     } else if (m_build_pass == 1) {
-      for (std::size_t i = m_build_cursor; i < end; ++i) m_sorted[m_start[m_entries[i].bucket]++] = m_entries[i].item;
+      for (std::size_t i = m_build_cursor; i < end; ++i) m_sorted[m_buckets[m_entries[i].bucket].start++] = m_entries[i].item;
     } else {
       for (std::size_t i = m_build_cursor; i < end; ++i) {
-        const Entry& e = m_entries[i];
-        if (m_stamp[e.bucket] == m_epoch) continue;
-        m_stamp[e.bucket] = m_epoch;
-        m_start[e.bucket] -= m_count[e.bucket];  // rewind to the range's start
+        Bucket& bucket = m_buckets[m_entries[i].bucket];
+        if (bucket.stamp == m_epoch) continue;
+        bucket.stamp = m_epoch;
+        bucket.start -= bucket.count;  // rewind to the range's start
       }
     }
     m_build_cursor = end;
@@ -128,7 +129,8 @@ bool SpatialHash::build_some(std::size_t max_visits) {
 }
 
 std::size_t SpatialHash::occupied_buckets() const {
-  return static_cast<std::size_t>(std::count(m_stamp.begin(), m_stamp.end(), m_epoch));
+  return static_cast<std::size_t>(
+      std::count_if(m_buckets.begin(), m_buckets.end(), [&](const Bucket& b) { return b.stamp == m_epoch; }));
 }
 
 }  // namespace tcb

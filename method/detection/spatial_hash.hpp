@@ -92,7 +92,7 @@ class SpatialHash {
   HashFunction function() const { return m_function; }
   /// The grid index of coordinate x along any axis: floor(x / cell size), clamped.
   std::int64_t cell_of(double x) const;
-  std::size_t table_size() const { return m_stamp.size(); }
+  std::size_t table_size() const { return m_buckets.size(); }
   std::size_t entry_count() const { return m_entries.size(); }
   /// Buckets holding at least one entry in the current epoch.
   std::size_t occupied_buckets() const;
@@ -104,20 +104,28 @@ class SpatialHash {
   };
   void check_box(std::int64_t ni, std::int64_t nj, std::int64_t nk) const;
   std::size_t bucket_of(std::int64_t i, std::int64_t j, std::int64_t k) const {
-    return static_cast<std::size_t>(hash_cell(m_function, i, j, k) % m_stamp.size());
+    return static_cast<std::size_t>(hash_cell(m_function, i, j, k) % m_buckets.size());
   }
   template <typename F>
   void for_each_in_bucket(std::size_t b, F& f) const {
-    if (m_stamp[b] != m_epoch) return;
-    const std::uint32_t* it = m_sorted.data() + m_start[b];
-    for (const std::uint32_t* end = it + m_count[b]; it != end; ++it) f(*it);
+    const Bucket& bucket = m_buckets[b];
+    if (bucket.stamp != m_epoch) return;
+    const std::uint32_t* it = m_sorted.data() + bucket.start;
+    for (const std::uint32_t* end = it + bucket.count; it != end; ++it) f(*it);
   }
 
   double m_cell_size = 1.0;
   double m_inverse_cell = 1.0;
   HashFunction m_function = HashFunction::Mixed;
-  std::vector<std::uint32_t> m_start, m_count;  // per bucket, valid where m_stamp == m_epoch
-  std::vector<std::uint32_t> m_stamp;
+  // A bucket's three words side by side: inserting, building and querying
+  // touch one cache line per bucket instead of three (the table is larger
+  // than the caches on big scenes, and buckets are reached in random order).
+  struct Bucket {
+    std::uint32_t stamp = 0;  ///< the epoch it was last written in; older = empty
+    std::uint32_t count = 0;  ///< entries, valid where stamp == m_epoch
+    std::uint32_t start = 0;  ///< first entry in m_sorted (after build)
+  };
+  std::vector<Bucket> m_buckets;
   std::uint32_t m_epoch = 1;
   std::vector<Entry> m_entries;   // in insertion order
   std::vector<std::uint32_t> m_sorted;  // items grouped by bucket (after build)

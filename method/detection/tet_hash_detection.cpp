@@ -46,9 +46,8 @@ TetHashDetector::TetHashDetector(const World& world, const DetectionSettings& se
     total += static_cast<std::uint32_t>(world.bodies[b].mesh->tet_count());
     m_owner.insert(m_owner.end(), world.bodies[b].mesh->tet_count(), static_cast<std::int32_t>(b));
   }
-  m_tet_lo.resize(total);
-  m_tet_hi.resize(total);
-  m_tested.assign(total, 0);
+  m_boxes.resize(total, TetBox{Vec3::Zero(), Vec3::Zero()});
+  m_scratch = make_scratch();
   const std::size_t table = settings.table_size ? settings.table_size : next_prime(2 * std::size_t(total) + 1);
   m_hash = SpatialHash(settings.cell_size_m, table, settings.hash);
 }
@@ -71,7 +70,7 @@ void TetHashDetector::begin_hash() {
 
 void TetHashDetector::enable_refresh() {
   if (!m_hashed_cells.empty()) return;
-  m_hashed_cells.assign(6 * m_tet_lo.size(), 0);
+  m_hashed_cells.assign(6 * m_boxes.size(), 0);
   m_overflow = SpatialHash(m_hash.cell_size_m(), m_hash.table_size(), m_hash.function());
 }
 
@@ -101,7 +100,7 @@ std::uint64_t TetHashDetector::walk_tets(const World& world, const CollisionPair
       const std::size_t t = m_hash_tet;
       if (degenerate[t]) continue;
       const std::uint32_t id = m_body_tet_offset[m_hash_body] + static_cast<std::uint32_t>(t);
-      tet_box(body, body.mesh->tets[t], m_tet_lo[id], m_tet_hi[id]);
+      tet_box(body, body.mesh->tets[t], m_boxes[id].lo, m_boxes[id].hi);
       work += visit(id);
     }
   }
@@ -116,10 +115,10 @@ std::uint64_t TetHashDetector::refresh_some_tets(const World& world, const Colli
     const std::int64_t* cells = &m_hashed_cells[6 * std::size_t(id)];
     bool inside = true;
     for (int a = 0; a < 3; ++a)
-      inside = inside && m_hash.cell_of(m_tet_lo[id][a]) >= cells[a] && m_hash.cell_of(m_tet_hi[id][a]) <= cells[3 + a];
+      inside = inside && m_hash.cell_of(m_boxes[id].lo[a]) >= cells[a] && m_hash.cell_of(m_boxes[id].hi[a]) <= cells[3 + a];
     if (inside) return work::kTetBox;
     ++m_overflow_tets;
-    return work::kTetBox + work::kCellInsert * m_overflow.insert_box(m_tet_lo[id], m_tet_hi[id], id);
+    return work::kTetBox + work::kCellInsert * m_overflow.insert_box(m_boxes[id].lo, m_boxes[id].hi, id);
   });
   if (done) m_overflow_active = m_overflow_tets > 0;
   return work;
@@ -128,12 +127,12 @@ std::uint64_t TetHashDetector::refresh_some_tets(const World& world, const Colli
 std::uint64_t TetHashDetector::hash_some_tets(const World& world, const CollisionPairs& pairs, std::size_t max_tets,
                                               bool& done) {
   return walk_tets(world, pairs, false, max_tets, done, [&](std::uint32_t id) {
-    const std::uint64_t work = work::kCellInsert * m_hash.insert_box(m_tet_lo[id], m_tet_hi[id], id);
+    const std::uint64_t work = work::kCellInsert * m_hash.insert_box(m_boxes[id].lo, m_boxes[id].hi, id);
     if (!m_hashed_cells.empty()) {
       std::int64_t* cells = &m_hashed_cells[6 * std::size_t(id)];
       for (int a = 0; a < 3; ++a) {
-        cells[a] = m_hash.cell_of(m_tet_lo[id][a]);
-        cells[3 + a] = m_hash.cell_of(m_tet_hi[id][a]);
+        cells[a] = m_hash.cell_of(m_boxes[id].lo[a]);
+        cells[3 + a] = m_hash.cell_of(m_boxes[id].hi[a]);
       }
     }
     return work;
@@ -142,25 +141,26 @@ std::uint64_t TetHashDetector::hash_some_tets(const World& world, const Collisio
 
 std::optional<Contact> TetHashDetector::query_point(const World& world, const CollisionPairs& pairs,
                                                     std::int32_t object, std::int32_t vertex, std::uint64_t& work,
-                                                    double margin_m) {
+                                                    double margin_m, QueryScratch& scratch) const {
   const Vec3& p = world.bodies[object].x_m[vertex];
-  if (++m_query == 0) {  // wrapped: reset the per-tet stamps once
-    std::fill(m_tested.begin(), m_tested.end(), 0);
-    m_query = 1;
+  if (++scratch.query == 0) {  // wrapped: reset the per-tet stamps once
+    std::fill(scratch.tested.begin(), scratch.tested.end(), 0);
+    scratch.query = 1;
   }
   work += work::kPointQuery;
   std::uint32_t best = UINT32_MAX;
   const Vec3 grow = Vec3::Constant(margin_m);
   const auto test = [&](std::uint32_t id) {
-    if (m_tested[id] == m_query || id >= best) return;
-    m_tested[id] = m_query;
+    if (scratch.tested[id] == scratch.query || id >= best) return;
+    scratch.tested[id] = scratch.query;
     const std::int32_t other = m_owner[id];
     if (!pairs.enabled(object, other)) return;
     const std::int32_t t = static_cast<std::int32_t>(id - m_body_tet_offset[other]);
     const Body& B = world.bodies[other];
     const Tet& tet = B.mesh->tets[t];
     if (other == object && incident(tet, vertex)) return;
-    const Vec3 lo = m_tet_lo[id] - grow, hi = m_tet_hi[id] + grow;
+    const TetBox& box = m_boxes[id];
+    const Vec3 lo = box.lo - grow, hi = box.hi + grow;
     if ((p.array() < lo.array()).any() || (p.array() > hi.array()).any()) return;
     work += work::kCandidate;
     if (point_in_tet_perturbed(p, B.x_m[tet[0]], B.x_m[tet[1]], B.x_m[tet[2]], B.x_m[tet[3]])) best = id;

@@ -23,7 +23,10 @@
 ///   2. query_point(): one vertex is hashed; for each tet in its bucket: skip
 ///      pairs that are not enabled and tets incident to the vertex
 ///      (self-collision), reject by the stored AABB, then the exact perturbed
-///      point-in-tet test (perturbed_predicates.hpp).
+///      point-in-tet test (perturbed_predicates.hpp). The cheapest filter
+///      first: the owner is a dense 4-byte array that stays in cache, and
+///      on the dog pair (self-collision off) it rejects most entries; testing
+///      the 48-byte box first measured 1.8x slower there.
 /// A point inside several tets (overlapping objects or a folded mesh) is
 /// reported in the one with the smallest (body, tet) index, so the answer never
 /// depends on the order of the bucket. Work: work_units.hpp.
@@ -77,7 +80,21 @@ class TetHashDetector {
   /// with the current positions; then no tet that now holds the point is
   /// missed. margin_m = 0 is the paper's query: the point's cell only.
   std::optional<Contact> query_point(const World& world, const CollisionPairs& pairs, std::int32_t object,
-                                     std::int32_t vertex, std::uint64_t& work, double margin_m = 0.0);
+                                     std::int32_t vertex, std::uint64_t& work, double margin_m = 0.0) {
+    return query_point(world, pairs, object, vertex, work, margin_m, m_scratch);
+  }
+  /// What one query remembers (the tets it met, so a tet in several of its
+  /// buckets is tested and charged once). One per thread: queries with their
+  /// own scratch may run concurrently on an unchanging table and world.
+  struct QueryScratch {
+    std::vector<std::uint32_t> tested;  ///< per global tet: the last query that met it
+    std::uint32_t query = 0;
+  };
+  QueryScratch make_scratch() const { return QueryScratch{std::vector<std::uint32_t>(m_boxes.size(), 0), 0}; }
+  /// query_point() with the caller's scratch; the same answer and work.
+  std::optional<Contact> query_point(const World& world, const CollisionPairs& pairs, std::int32_t object,
+                                     std::int32_t vertex, std::uint64_t& work, double margin_m,
+                                     QueryScratch& scratch) const;
 
   const SpatialHash& hash() const { return m_hash; }
 
@@ -95,10 +112,14 @@ class TetHashDetector {
   std::size_t m_overflow_tets = 0;
   std::vector<std::int64_t> m_hashed_cells;           // per global tet: cell range it was hashed in (refresh only)
   std::vector<std::uint32_t> m_body_tet_offset;       // global tet id = offset[body] + tet
-  std::vector<std::int32_t> m_owner;                  // global tet id -> body
-  std::vector<Vec3> m_tet_lo, m_tet_hi;               // AABBs at hashing time, or at the last refresh
-  std::vector<std::uint32_t> m_tested;                // per global tet: last query that tested it
-  std::uint32_t m_query = 0;
+  std::vector<std::int32_t> m_owner;                  // global tet id -> body (dense: the first filter)
+  // A tet's AABB (at hashing time, or at the last refresh), lo and hi side by
+  // side: the box test reads one record instead of two arrays.
+  struct TetBox {
+    Vec3 lo, hi;
+  };
+  std::vector<TetBox> m_boxes;
+  QueryScratch m_scratch;                             // the single-threaded queries'
   std::size_t m_hash_body = 0, m_hash_tet = 0;        // hash_some_tets()'s and refresh_some_tets()'s cursor
 };
 

@@ -23,6 +23,10 @@ CollisionCycle::CollisionCycle(const World& world, CollisionSettings settings, D
       m_surface(world, m_settings.detection.cell_size_m, m_settings.detection.hash) {
   if (m_rehash_stale) m_detector.enable_refresh();
   if (mode == DetectionMode::SpatialHash) warm_up(world);
+  if (m_settings.threads > 1 && mode == DetectionMode::SpatialHash) {
+    m_pool = std::make_unique<WorkerPool>(m_settings.threads);
+    for (int t = 0; t < m_settings.threads; ++t) m_thread_scratch.push_back(m_detector.make_scratch());
+  }
   m_lookup.resize(world.bodies.size());
   for (std::size_t b = 0; b < world.bodies.size(); ++b) {
     m_lookup[b].assign(world.bodies[b].x_m.size(), -1);
@@ -62,6 +66,7 @@ void CollisionCycle::begin(const World& world) {
   m_margin_step = world.step_index;
   for (const Contact& c : m_contacts) m_lookup[c.object][c.vertex] = -1;
   m_contacts.clear();
+  m_batch.clear();
   ++m_number;
   m_tasks = 0;
   if (m_order == WorkOrder::FastestFirst) enter(Stage::Prioritize, world);
@@ -238,6 +243,7 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
       m_resume_cursor = m_cursor;
       m_motion_at_refresh_m = m_tet_motion_m;
       m_detector.begin_refresh();
+      m_batch.clear();  // answered against the table before the refresh
       m_stage = Stage::RefreshTets;
       close_stage(cost_stage(m_resume_stage));
     }
@@ -299,7 +305,14 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
         break;
       }
       case Stage::QueryPoints:
-        if (m_cursor < m_queries.size()) {
+        if (m_cursor < m_queries.size() && m_pool) {
+          // The same task as below with its answer computed ahead: the same
+          // contact and work, so budgets stop at the same point.
+          if (!batch_holds(world)) query_batch(world, budget);
+          const Answer& answer = m_batch[m_cursor++ - m_batch_begin];
+          work = answer.work;
+          if (answer.hit) add_contact(*answer.hit);
+        } else if (m_cursor < m_queries.size()) {
           const auto [body, vertex] =
               m_queries[m_order == WorkOrder::FastestFirst ? m_query_order[m_cursor++] : m_cursor++];
           if (const auto hit = detect(world, body, vertex, work)) add_contact(*hit);
@@ -440,6 +453,33 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
     }
   }
   return m_stage == Stage::Done;
+}
+
+bool CollisionCycle::batch_holds(const World& world) const {
+  return m_batch_step == world.step_index && m_cursor >= m_batch_begin && m_cursor < m_batch_begin + m_batch.size();
+}
+
+void CollisionCycle::query_batch(const World& world, const Budget& budget) {
+  // Without a budget every remaining point at once; under one, a few dozen
+  // points a thread, so a batch (all of it charged to the task that starts
+  // it) stays short. Answers past where the budget stops are dropped: the
+  // next step asks again at its own positions.
+  constexpr std::size_t kPerThread = 64;
+  const std::size_t remaining = m_queries.size() - m_cursor;
+  const std::size_t size = budget.kind() == BudgetKind::None
+                               ? remaining
+                               : std::min(remaining, kPerThread * static_cast<std::size_t>(m_pool->threads()));
+  m_batch.assign(size, Answer{});
+  m_batch_begin = m_cursor;
+  m_batch_step = world.step_index;
+  m_pool->for_ranges(size, [&](int part, std::size_t begin, std::size_t end) {
+    TetHashDetector::QueryScratch& scratch = m_thread_scratch[static_cast<std::size_t>(part)];
+    for (std::size_t i = begin; i < end; ++i) {
+      const std::size_t at = m_batch_begin + i;
+      const auto [body, vertex] = m_queries[m_order == WorkOrder::FastestFirst ? m_query_order[at] : at];
+      m_batch[i].hit = m_detector.query_point(world, m_pairs, body, vertex, m_batch[i].work, m_tet_margin_m, scratch);
+    }
+  });
 }
 
 std::optional<Contact> CollisionCycle::detect(const World& world, std::int32_t body, std::int32_t vertex,

@@ -62,6 +62,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -69,6 +70,7 @@
 #include "method/handler/budget.hpp"
 #include "method/handler/collision_settings.hpp"
 #include "method/handler/stage_costs.hpp"
+#include "sim/parallel/worker_pool.hpp"
 
 namespace tcb {
 
@@ -204,6 +206,8 @@ class CollisionCycle {
   void restore_index_order();
   void start_layer_scan();
   bool scan_layer_some(const World& world, std::size_t max_contacts);
+  bool batch_holds(const World& world) const;
+  void query_batch(const World& world, const Budget& budget);
 
   CollisionSettings m_settings;
   DetectionMode m_mode;
@@ -244,6 +248,17 @@ class CollisionCycle {
   ContactLookup m_lookup;
   StageCosts m_step_costs;
   ClockMs m_clock = steady_clock_ms();
+  // settings.threads > 1 (spatial hash only): point queries answered ahead in
+  // parallel batches, then consumed one a task in the serial order.
+  struct Answer {
+    std::optional<Contact> hit;
+    std::uint64_t work = 0;
+  };
+  std::unique_ptr<WorkerPool> m_pool;
+  std::vector<TetHashDetector::QueryScratch> m_thread_scratch;  // one per thread
+  std::vector<Answer> m_batch;          // answers for query positions [m_batch_begin, m_batch_begin + size)
+  std::size_t m_batch_begin = 0;
+  std::int64_t m_batch_step = -1;       // the step whose positions and tables they were computed at
 };
 
 }  // namespace tcb

@@ -57,6 +57,7 @@ CollisionSettings resolve_collision_settings(const World& world, const Collision
   s.detection.hash = desc.hash;
   s.dt_s = dt_s;
   s.response_mode = desc.response_mode;
+  s.threads = desc.threads;
   if (s.response_mode == ResponseMode::Implicit)
     for (const Body& b : world.bodies)
       if (!b.passive && b.material.model == MaterialModel::MassSpring && b.material.integrator != Integrator::EulerCromer)

@@ -39,6 +39,9 @@ struct CollisionDesc {
   /// the bodies (default) or as explicit external forces (the method before).
   ResponseMode response_mode = ResponseMode::Implicit;
   std::vector<CollisionPairDesc> pairs;
+  /// Threads for the cycle's point queries (collision_cycle.hpp); 1 = none
+  /// started. The results are the same for every count.
+  int threads = 1;
 };
 
 struct CollisionSettings {
@@ -47,6 +50,7 @@ struct CollisionSettings {
   std::size_t tets = 0;         ///< of all bodies: the table's automatic size counts them
   double dt_s = 1.0e-3;  ///< the scene's step: bounds explicit damping and friction
   ResponseMode response_mode = ResponseMode::Implicit;
+  int threads = 1;  ///< as CollisionDesc::threads
   std::size_t body_count = 0;
   std::vector<ResponseParams> pair_response;  ///< body_count^2, symmetric
   /// Settings that are allowed but likely to misbehave, in words (e.g. under

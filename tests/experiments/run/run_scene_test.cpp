@@ -282,9 +282,11 @@ TEST_CASE("without contacts between bodies implicit and explicit response are th
     REQUIRE(without_timing(lines[0][0], lines[0][i]) == without_timing(lines[1][0], lines[1][i]));
 }
 
-TEST_CASE("under a work budget two runs are identical apart from timings", "[run]") {
+TEST_CASE("under a work budget two runs are identical apart from timings, whatever the thread count", "[run]") {
   // The paper's task granularity, our fine tasks (resumable hashing), with
-  // rehashed stale tets, and our fastest-first order.
+  // rehashed stale tets, and our fastest-first order. The second run answers
+  // its point queries on 3 threads (collision.threads): the work charged, so
+  // where the budget stops, and everything that follows must not change.
   struct Case {
     std::string method;
     bool fine, rehash;
@@ -295,10 +297,13 @@ TEST_CASE("under a work budget two runs are identical apart from timings", "[run
                                                              {"interruptible_prioritized", false, false}}) {
   INFO(method << " fine_tasks " << fine << " rehash_stale " << rehash);
   const fs::path a = fresh_dir("work_a"), b = fresh_dir("work_b");
-  const SceneDesc scene = load_scene_file(resolve_scene("plates20", default_scene_dirs()),
-                                          {"method." + method + ".fine_tasks=" + (fine ? "true" : "false"),
-                                           "method." + method + ".rehash_stale=" + (rehash ? "true" : "false")});
+  const std::vector<std::string> sets = {"method." + method + ".fine_tasks=" + (fine ? "true" : "false"),
+                                         "method." + method + ".rehash_stale=" + (rehash ? "true" : "false")};
+  std::vector<std::string> threaded = sets;
+  threaded.push_back("collision.threads=3");
+  const auto path = resolve_scene("plates20", default_scene_dirs());
   for (const auto& dir : {a, b}) {
+    const SceneDesc scene = load_scene_file(path, dir == a ? sets : threaded);
     RunOptions options;
     options.method = method;
     options.budget = {BudgetKind::Work, 20000};
@@ -325,11 +330,33 @@ TEST_CASE("under a work budget two runs are identical apart from timings", "[run
   CHECK(run["summary"]["cycle_steps"]["max"].get<double>() > 1.0);
   CHECK(run["settings"]["fine_tasks"] == fine);
   CHECK(run["settings"]["rehash_stale"] == rehash);
+  CHECK(run["collision"]["threads"] == 1);
+  CHECK(nlohmann::json::parse(read_file(b / "run.json"))["collision"]["threads"] == 3);
   // The largest charge: the paper's one hashing task, or a small piece of it.
   CHECK((run["summary"]["max_task_work"].get<double>() > 10000.0) == !fine);
   fs::remove_all(a);
   fs::remove_all(b);
   }
+}
+
+TEST_CASE("without a budget full handling is the same run on 1 and 2 threads", "[run]") {
+  const fs::path a = fresh_dir("threads_1"), b = fresh_dir("threads_2");
+  const auto path = resolve_scene("plates20", default_scene_dirs());
+  for (const auto& dir : {a, b}) {
+    RunOptions options;
+    options.method = "full";
+    options.steps = 40;
+    options.out_dir = dir;
+    const SceneDesc scene = load_scene_file(path, {dir == a ? "collision.threads=1" : "collision.threads=2"});
+    CHECK(run_scene(scene, options).status == "ok");
+  }
+  const auto la = lines_of(a / "steps.csv"), lb = lines_of(b / "steps.csv");
+  REQUIRE(la.size() == 41);
+  for (std::size_t i = 1; i < la.size(); ++i) REQUIRE(without_timing(la[0], la[i]) == without_timing(lb[0], lb[i]));
+  const auto run = nlohmann::json::parse(read_file(a / "run.json"));
+  CHECK(run["summary"]["colliding_points_max"].get<double>() > 100.0);  // the queries found contacts to agree on
+  fs::remove_all(a);
+  fs::remove_all(b);
 }
 
 TEST_CASE("stage times lie inside handling time, the step is handling plus dynamics", "[run][stages]") {

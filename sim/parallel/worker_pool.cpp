@@ -1,0 +1,78 @@
+#include "sim/parallel/worker_pool.hpp"
+
+#include <stdexcept>
+
+namespace tcb {
+
+WorkerPool::WorkerPool(int threads) : m_threads(threads), m_errors(threads > 0 ? threads : 1) {
+  if (threads < 1) throw std::invalid_argument("a worker pool needs at least one thread");
+  for (int part = 1; part < threads; ++part) m_workers.emplace_back([this, part] { worker(part); });
+}
+
+WorkerPool::~WorkerPool() {
+  {
+    std::lock_guard<std::mutex> lock(m_mutex);
+    m_stop = true;
+  }
+  m_start.notify_all();
+  for (std::thread& t : m_workers) t.join();
+}
+
+std::pair<std::size_t, std::size_t> WorkerPool::range_of(std::size_t n, int parts, int part) {
+  const auto p = static_cast<std::size_t>(parts), k = static_cast<std::size_t>(part);
+  const std::size_t base = n / p, extra = n % p;  // the first `extra` parts take one more
+  const std::size_t begin = k * base + (k < extra ? k : extra);
+  return {begin, begin + base + (k < extra ? 1 : 0)};
+}
+
+void WorkerPool::run_part(int part) {
+  const auto [begin, end] = range_of(m_n, m_threads, part);
+  if (begin == end) return;
+  try {
+    (*m_function)(part, begin, end);
+  } catch (...) {
+    m_errors[static_cast<std::size_t>(part)] = std::current_exception();
+  }
+}
+
+void WorkerPool::worker(int part) {
+  std::size_t seen = 0;
+  for (;;) {
+    {
+      std::unique_lock<std::mutex> lock(m_mutex);
+      m_start.wait(lock, [&] { return m_stop || m_generation != seen; });
+      if (m_stop) return;
+      seen = m_generation;
+    }
+    run_part(part);
+    {
+      std::lock_guard<std::mutex> lock(m_mutex);
+      --m_pending;
+    }
+    m_done.notify_one();
+  }
+}
+
+void WorkerPool::for_ranges(std::size_t n, const RangeFunction& f) {
+  for (std::exception_ptr& e : m_errors) e = nullptr;
+  m_n = n;
+  m_function = &f;
+  if (m_threads > 1) {
+    {
+      std::lock_guard<std::mutex> lock(m_mutex);
+      m_pending = m_threads - 1;
+      ++m_generation;
+    }
+    m_start.notify_all();
+  }
+  run_part(0);
+  if (m_threads > 1) {
+    std::unique_lock<std::mutex> lock(m_mutex);
+    m_done.wait(lock, [&] { return m_pending == 0; });
+  }
+  m_function = nullptr;
+  for (const std::exception_ptr& e : m_errors)
+    if (e) std::rethrow_exception(e);
+}
+
+}  // namespace tcb

@@ -1,0 +1,64 @@
+#include "sim/parallel/worker_pool.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <atomic>
+#include <stdexcept>
+#include <thread>
+#include <vector>
+
+using namespace tcb;
+
+TEST_CASE("worker pool ranges cover every index once, contiguous and balanced", "[worker_pool]") {
+  for (int parts : {1, 2, 3, 7})
+    for (std::size_t n : {0, 1, 2, 6, 7, 1000, 1001}) {
+      std::size_t next = 0;
+      for (int part = 0; part < parts; ++part) {
+        const auto [begin, end] = WorkerPool::range_of(n, parts, part);
+        REQUIRE(begin == next);
+        REQUIRE(end - begin <= n / parts + 1);
+        REQUIRE(end - begin >= n / parts);
+        next = end;
+      }
+      REQUIRE(next == n);
+    }
+}
+
+TEST_CASE("worker pool runs every index once, on several threads, and can be reused", "[worker_pool]") {
+  for (int threads : {1, 2, 4}) {
+    WorkerPool pool(threads);
+    for (int round = 0; round < 50; ++round) {
+      const std::size_t n = 37 + static_cast<std::size_t>(round) * 13;
+      std::vector<int> hits(n, 0);
+      std::vector<std::thread::id> who(static_cast<std::size_t>(threads));
+      pool.for_ranges(n, [&](int part, std::size_t begin, std::size_t end) {
+        who[static_cast<std::size_t>(part)] = std::this_thread::get_id();
+        for (std::size_t i = begin; i < end; ++i) ++hits[i];
+      });
+      for (int h : hits) REQUIRE(h == 1);
+      // Part 0 is the caller's; the others are the pool's own threads.
+      REQUIRE(who[0] == std::this_thread::get_id());
+      for (int part = 1; part < threads; ++part) REQUIRE(who[static_cast<std::size_t>(part)] != who[0]);
+    }
+  }
+}
+
+TEST_CASE("worker pool rethrows the lowest failing part's exception after all parts ran", "[worker_pool]") {
+  WorkerPool pool(3);
+  std::atomic<int> ran{0};
+  try {
+    pool.for_ranges(30, [&](int part, std::size_t, std::size_t) {
+      ++ran;
+      if (part >= 1) throw std::runtime_error("part " + std::to_string(part));
+    });
+    FAIL("no exception");
+  } catch (const std::runtime_error& e) {
+    CHECK(std::string(e.what()) == "part 1");
+  }
+  CHECK(ran == 3);
+  // Still usable afterwards.
+  std::atomic<std::size_t> sum{0};
+  pool.for_ranges(10, [&](int, std::size_t b, std::size_t e) { sum += e - b; });
+  CHECK(sum == 10);
+  CHECK_THROWS_AS(WorkerPool(0), std::invalid_argument);
+}
