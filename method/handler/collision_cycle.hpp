@@ -59,6 +59,14 @@
 /// runs within one step, the two are bit for bit the same run). Work units
 /// are the same under both: building a table is not charged (its cost
 /// follows the inserts already charged).
+///
+/// With settings.threads > 1 (spatial hash only) the QueryPoints stage answers
+/// a batch of queries ahead on a WorkerPool (all remaining points without a
+/// budget, 64 a thread under one), then takes the answers one a task in the
+/// serial order with each query's own work: contacts, work units and where a
+/// budget stops are those of one thread. A batch holds for its step only and
+/// is dropped by begin() and by a refresh; the batch's time falls in the task
+/// that starts it, so under wall budgets a task is a batch long.
 
 #include <array>
 #include <cstdint>
