@@ -17,8 +17,12 @@
 /// finite coordinates whose magnitudes are 0 or lie within about [1e-90, 1e90]
 /// (products of three coordinate differences must stay normal doubles).
 /// Requires IEEE-754 round-to-nearest-even doubles without -ffast-math.
-/// Cost: ~20 flops when the filter decides; a few hundred when it does not
-/// (always the case for exactly coplanar input).
+/// Between the filter and the expansions, an exact shortcut returns 0 when
+/// every term of the determinant has an exactly zero coordinate difference
+/// (e.g. four points in one axis-aligned plane).
+/// Cost: ~20 flops when the filter decides, a few more when the shortcut
+/// does; a few hundred when the expansions must (exactly coplanar input in a
+/// plane that is not axis aligned, or a determinant too small for the filter).
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -29,8 +33,8 @@ namespace tcb {
 int orient3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
              const Eigen::Vector3d& d);
 
-/// The same sign evaluated only by the exact expansion path (no filter).
-/// Exposed so tests can check the filter against it.
+/// The same sign evaluated only by the exact expansion path (no filter, no
+/// shortcut). Exposed so tests can check the filter and shortcut against it.
 int orient3d_exact(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                    const Eigen::Vector3d& d);
 
@@ -40,5 +44,10 @@ int orient3d_exact(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eig
 /// Same contract as orient3d (exact for finite, non-underflowing input).
 int cross_product_sign(const Eigen::Vector3d& from1, const Eigen::Vector3d& to1, const Eigen::Vector3d& from2,
                        const Eigen::Vector3d& to2, int axis);
+
+/// The same sign evaluated only by the exact expansion path (no filter, no
+/// shortcut). Exposed so tests can check cross_product_sign against it.
+int cross_product_sign_exact(const Eigen::Vector3d& from1, const Eigen::Vector3d& to1,
+                             const Eigen::Vector3d& from2, const Eigen::Vector3d& to2, int axis);
 
 }  // namespace tcb

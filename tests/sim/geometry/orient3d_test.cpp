@@ -2,9 +2,14 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <random>
 
+using tcb::cross_product_sign;
+using tcb::cross_product_sign_exact;
 using tcb::orient3d;
 using tcb::orient3d_exact;
 using V = Eigen::Vector3d;
@@ -20,6 +25,18 @@ int reference_sign(const std::array<std::int64_t, 12>& p) {
   const I dax = p[9] - p[0], day = p[10] - p[1], daz = p[11] - p[2];
   const I det = bax * (cay * daz - caz * day) - bay * (cax * daz - caz * dax) + baz * (cax * day - cay * dax);
   return det > 0 ? 1 : (det < 0 ? -1 : 0);
+}
+
+// The same sign from rows a - d, b - d, c - d (det[b-a, c-a, d-a] =
+// -det[a-d, b-d, c-d]): exact while every product of three such differences
+// stays below 2^127.
+int reference_sign_from_d(const std::array<std::int64_t, 12>& p) {
+  __extension__ typedef __int128 I;
+  const I ax = p[0] - p[9], ay = p[1] - p[10], az = p[2] - p[11];
+  const I bx = p[3] - p[9], by = p[4] - p[10], bz = p[5] - p[11];
+  const I cx = p[6] - p[9], cy = p[7] - p[10], cz = p[8] - p[11];
+  const I det = ax * (by * cz - bz * cy) - ay * (bx * cz - bz * cx) + az * (bx * cy - by * cx);
+  return det > 0 ? -1 : (det < 0 ? 1 : 0);
 }
 
 int naive_sign(const V& a, const V& b, const V& c, const V& d) {
@@ -136,4 +153,149 @@ TEST_CASE("orient3d: filter agrees with the exact path on a million near-degener
   // exactly coplanar (the filter can never certify those).
   CHECK(naive_wrong > kCases / 100);
   CHECK(zeros > kCases / 100);
+}
+
+TEST_CASE("orient3d: the zero-difference shortcut agrees with the exact path", "[orient3d]") {
+  // Near-coplanar integer points with exactly equal coordinates: per axis,
+  // a, b, c are independent, or two of them or all three share the value;
+  // d = a + s (b - a) + t (c - a), nudged by one unit on some axes. So whole
+  // faces lie in an axis-aligned plane (every term of the determinant has a
+  // zero factor: the shortcut answers 0), and as often some terms vanish
+  // while the others nearly cancel (the filter fails and the shortcut must
+  // not answer; every other case is built to be of that kind, below).
+  // Checked against the exact path and the 128-bit reference at scales
+  // 2^-60 .. 2^60 (in the last kind, points reach 2^51: still exact doubles).
+  std::mt19937_64 rng(26112026);
+  std::uniform_int_distribution<std::int64_t> coord(-(std::int64_t(1) << 30), std::int64_t(1) << 30);
+  std::uniform_int_distribution<std::int64_t> small(-2, 2);
+  std::uniform_int_distribution<int> pattern(0, 4), nudge(-1, 1), coin(0, 1), exponent(-60, 60);
+  constexpr int kCases = 300000;
+  int all_terms_zero = 0, filter_fails_shortcut_must_not = 0;
+  for (int i = 0; i < kCases; ++i) {
+    std::array<std::int64_t, 12> p{};
+    for (int k = 0; k < 3; ++k) {
+      std::int64_t& pa = p[k];
+      std::int64_t& pb = p[3 + k];
+      std::int64_t& pc = p[6 + k];
+      pa = coord(rng), pb = coord(rng), pc = coord(rng);
+      switch (pattern(rng)) {
+        case 1: pb = pa; break;
+        case 2: pc = pa; break;
+        case 3: pc = pb; break;
+        case 4: pb = pc = pa; break;
+        default: break;
+      }
+    }
+    const std::int64_t s = small(rng), t = small(rng);
+    for (int k = 0; k < 3; ++k)
+      p[9 + k] = p[k] + s * (p[3 + k] - p[k]) + t * (p[6 + k] - p[k]) + (coin(rng) ? nudge(rng) : 0);
+    if (i % 2 == 1) {
+      // The hardest kind for the shortcut: some differences exactly zero and
+      // the other terms cancelling. From d: v, w random; u = k (w_x v - v_x w)
+      // lies in their plane with u_x = 0 exactly, then one unit off it. Roles
+      // (which of a, b, c is d + u) and axes are permuted. Magnitudes stay
+      // below 2^53 (exact doubles) and the reference's products below 2^127.
+      std::array<std::int64_t, 3> u{}, v{}, w{};
+      for (int k = 0; k < 3; ++k) v[k] = coord(rng) >> 6, w[k] = coord(rng) >> 6;
+      const std::int64_t scale = coin(rng) + 1;
+      if (i % 4 == 1) {
+        for (int k = 0; k < 3; ++k) u[k] = scale * (w[0] * v[k] - v[0] * w[k]);
+        u[1 + coin(rng)] += coin(rng) ? 1 : -1;
+      } else {
+        // Two zero differences: v_x = w_x = 0 and w one unit off parallel to
+        // v, so det = u_x (v_y w_z - v_z w_y), a minor that cancels to 2^-50
+        // of its products when v is near 2^50 (below the filter's bound).
+        for (int k = 0; k < 3; ++k) u[k] = coord(rng) >> 22, v[k] = coord(rng) * (std::int64_t(1) << 20);
+        v[0] = w[0] = 0;
+        for (int k = 1; k < 3; ++k) w[k] = scale * v[k];
+        w[1 + coin(rng)] += coin(rng) ? 1 : -1;
+      }
+      const int roll = pattern(rng) % 3, role = pattern(rng) % 3;
+      const std::array<std::int64_t, 3>* rows[3] = {&u, &v, &w};
+      for (int k = 0; k < 3; ++k) p[9 + k] = coord(rng);
+      for (int r = 0; r < 3; ++r)
+        for (int k = 0; k < 3; ++k) p[3 * r + k] = p[9 + k] + (*rows[(r + role) % 3])[(k + roll) % 3];
+    }
+    const int expected = reference_sign_from_d(p);
+    const double f = std::ldexp(1.0, exponent(rng));
+    const V a(p[0] * f, p[1] * f, p[2] * f), b(p[3] * f, p[4] * f, p[5] * f), c(p[6] * f, p[7] * f, p[8] * f),
+        d(p[9] * f, p[10] * f, p[11] * f);
+    REQUIRE(orient3d(a, b, c, d) == expected);
+    REQUIRE(orient3d_exact(a, b, c, d) == expected);
+    // Classify on the integer differences, to show both kinds occur.
+    std::array<bool, 9> z{};  // rows a-d, b-d, c-d
+    for (int r = 0; r < 3; ++r)
+      for (int k = 0; k < 3; ++k) z[3 * r + k] = p[3 * r + k] == p[9 + k];
+    const auto zero = [&](int x, int y, int w) { return z[x] || z[3 + y] || z[6 + w]; };
+    const bool all_zero = zero(0, 1, 2) && zero(0, 2, 1) && zero(1, 0, 2) && zero(1, 2, 0) && zero(2, 0, 1) &&
+                          zero(2, 1, 0);
+    const int zero_diffs = static_cast<int>(std::count(z.begin(), z.end(), true));
+    all_terms_zero += all_zero;
+    filter_fails_shortcut_must_not += !all_zero && zero_diffs > 0 && std::abs(naive_sign(a, b, c, d) - expected) > 0;
+  }
+  CHECK(all_terms_zero > kCases / 20);
+  // Cases where plain floating point is wrong although some differences are
+  // exactly zero: the filter cannot decide those, and the shortcut must not.
+  CHECK(filter_fails_shortcut_must_not > kCases / 1000);
+}
+
+TEST_CASE("cross_product_sign: filter and shortcut agree with the exact path on near-degenerate input",
+          "[orient3d]") {
+  // Issue 14: the 2x2 sign the symbolic tie-breaks use, checked like
+  // orient3d. Three families, 300,000 cases each: integer vectors nudged one
+  // unit off parallel (against a 128-bit reference); doubles with v computed
+  // parallel to u in floating point then moved 0 .. 2 ulps; and coordinates
+  // from a pool of two values per axis (exact zero differences).
+  std::mt19937_64 rng(1126);
+  std::uniform_int_distribution<std::int64_t> coord(-(std::int64_t(1) << 30), std::int64_t(1) << 30);
+  std::uniform_int_distribution<std::int64_t> small(-6, 6);
+  std::uniform_int_distribution<int> nudge(-1, 1), ulps(-2, 2), exponent(-60, 60), pick(0, 1), axis_of(0, 2);
+  std::uniform_real_distribution<double> u01(-1.0, 1.0), w(-3.0, 3.0);
+  constexpr int kPerFamily = 300000;
+  int disagree = 0, reference_wrong = 0, zeros = 0, naive_wrong = 0;
+  for (int i = 0; i < 3 * kPerFamily; ++i) {
+    V from1, to1, from2, to2;
+    const int axis = axis_of(rng);
+    int expected = 2;  // unknown: only the exact path says
+    const int family = i % 3;
+    if (family == 0 || family == 2) {
+      std::array<std::int64_t, 12> p{};
+      if (family == 0) {
+        for (int k = 0; k < 6; ++k) p[k] = coord(rng);
+        for (int k = 0; k < 3; ++k) p[6 + k] = coord(rng);
+        const std::int64_t s = small(rng);  // to2 - from2 = s (to1 - from1) + nudge
+        for (int k = 0; k < 3; ++k) p[9 + k] = p[6 + k] + s * (p[3 + k] - p[k]) + nudge(rng);
+      } else {
+        std::array<std::int64_t, 6> pool{};
+        for (auto& v : pool) v = coord(rng);
+        for (int k = 0; k < 12; ++k) p[k] = pool[2 * (k % 3) + pick(rng)];
+      }
+      __extension__ typedef __int128 I;
+      const int j = (axis + 1) % 3, k = (axis + 2) % 3;
+      const I det = I(p[3 + j] - p[j]) * I(p[9 + k] - p[6 + k]) - I(p[3 + k] - p[k]) * I(p[9 + j] - p[6 + j]);
+      expected = det > 0 ? 1 : (det < 0 ? -1 : 0);
+      const double f = std::ldexp(1.0, exponent(rng));
+      from1 = V(p[0] * f, p[1] * f, p[2] * f), to1 = V(p[3] * f, p[4] * f, p[5] * f);
+      from2 = V(p[6] * f, p[7] * f, p[8] * f), to2 = V(p[9] * f, p[10] * f, p[11] * f);
+    } else {
+      const double f = std::ldexp(1.0, exponent(rng) / 2);
+      from1 = V(u01(rng), u01(rng), u01(rng)) * f, to1 = V(u01(rng), u01(rng), u01(rng)) * f;
+      from2 = V(u01(rng), u01(rng), u01(rng)) * f;
+      to2 = from2 + w(rng) * (to1 - from1);
+      for (int k = 0; k < 3; ++k)
+        for (int n = ulps(rng); n != 0; n += n > 0 ? -1 : 1)
+          to2[k] = std::nextafter(to2[k], n > 0 ? HUGE_VAL : -HUGE_VAL);
+    }
+    const int filtered = cross_product_sign(from1, to1, from2, to2, axis);
+    const int exact = cross_product_sign_exact(from1, to1, from2, to2, axis);
+    disagree += filtered != exact;
+    if (expected != 2) reference_wrong += exact != expected;
+    const double naive = (to1 - from1).cross(to2 - from2)[axis];
+    naive_wrong += (naive > 0 ? 1 : (naive < 0 ? -1 : 0)) != exact;
+    zeros += exact == 0;
+  }
+  REQUIRE(disagree == 0);
+  REQUIRE(reference_wrong == 0);
+  CHECK(naive_wrong > kPerFamily / 100);
+  CHECK(zeros > kPerFamily / 10);
 }
