@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "sim/mesh/tet_mesh.hpp"
+#include "sim/parallel/worker_pool.hpp"
 
 namespace tcb {
 
@@ -70,6 +71,21 @@ class SpatialHash {
   void begin_build();
   bool build_some(std::size_t max_visits);
 
+  /// insert_box() for the boxes i = 0 .. n-1 in order, then build(), on the
+  /// pool's threads: box_of(i, lo, hi, item) gives box i, or returns false
+  /// to skip it. The table is exactly the serial one: the same items in every
+  /// bucket, in insertion order (only where each bucket's range sits in the
+  /// sorted array differs, which no query sees). Returns the cells inserted.
+  /// Each part owns a contiguous range of buckets; a part computes its
+  /// boxes' cells and buckets into one list per owner (in order), then each
+  /// part counts, places and fills its own buckets from the lists meant for
+  /// it, read in part order, so no two threads write one bucket. box_of runs
+  /// concurrently on disjoint i.
+  /// A HashOverflow is thrown for the first offending box, as serially.
+  /// Call it on an empty table (right after begin_epoch()).
+  template <typename BoxOf>
+  std::size_t insert_all_and_build(std::size_t n, BoxOf&& box_of, WorkerPool& pool);
+
   /// Calls f(item) for every entry of the bucket of point p's cell.
   template <typename F>
   void for_each_in_cell(const Vec3& p, F&& f) const {
@@ -93,7 +109,7 @@ class SpatialHash {
   /// The grid index of coordinate x along any axis: floor(x / cell size), clamped.
   std::int64_t cell_of(double x) const;
   std::size_t table_size() const { return m_buckets.size(); }
-  std::size_t entry_count() const { return m_entries.size(); }
+  std::size_t entry_count() const { return m_entries.size() + m_parallel_entries; }
   /// Buckets holding at least one entry in the current epoch.
   std::size_t occupied_buckets() const;
 
@@ -103,6 +119,14 @@ class SpatialHash {
     std::uint32_t bucket;
   };
   void check_box(std::int64_t ni, std::int64_t nj, std::int64_t nk) const;
+  /// Appends box [lo, hi]'s entries to `out` without touching the table;
+  /// returns their number. Safe to call concurrently.
+  std::size_t entries_of_box(const Vec3& lo, const Vec3& hi, std::uint32_t item, std::vector<Entry>& out) const;
+  /// The part of `parts` that owns bucket b: contiguous ranges of buckets.
+  std::size_t owner_part(std::size_t b, std::size_t parts) const { return b * parts / m_buckets.size(); }
+  /// insert_all_and_build()'s second half: each part counts, places and
+  /// fills its own buckets from m_part_entries.
+  void build_parallel(WorkerPool& pool);
   std::size_t bucket_of(std::int64_t i, std::int64_t j, std::int64_t k) const {
     return static_cast<std::size_t>(hash_cell(m_function, i, j, k) % m_buckets.size());
   }
@@ -129,9 +153,42 @@ class SpatialHash {
   std::uint32_t m_epoch = 1;
   std::vector<Entry> m_entries;   // in insertion order
   std::vector<std::uint32_t> m_sorted;  // items grouped by bucket (after build)
+  // insert_all_and_build()'s lists: [p * parts + q] holds the entries part p
+  // made for the buckets part q owns, in insertion order (kept between
+  // epochs, so they do not regrow); per part, one box's entries.
+  std::vector<std::vector<Entry>> m_part_entries, m_part_scratch;
+  std::vector<std::vector<std::uint32_t>> m_part_touched;  // per part: its buckets, in first-met order
+  std::size_t m_parallel_entries = 0;                      // entries placed by insert_all_and_build()
   int m_build_pass = 3;                 // 0..2 while a build is under way, 3 when built
   std::size_t m_build_cursor = 0;
   std::uint32_t m_build_next = 0;
 };
+
+template <typename BoxOf>
+std::size_t SpatialHash::insert_all_and_build(std::size_t n, BoxOf&& box_of, WorkerPool& pool) {
+  if (!m_entries.empty() || m_parallel_entries != 0)
+    throw std::logic_error("SpatialHash::insert_all_and_build needs an empty table");
+  const std::size_t parts = static_cast<std::size_t>(pool.threads());
+  m_part_entries.resize(parts * parts);
+  m_part_scratch.resize(parts);
+  std::vector<std::size_t> cells(parts, 0);
+  pool.for_ranges(n, [&](int part, std::size_t begin, std::size_t end) {
+    const std::size_t p = static_cast<std::size_t>(part);
+    for (std::size_t q = 0; q < parts; ++q) m_part_entries[p * parts + q].clear();
+    std::vector<Entry>& scratch = m_part_scratch.at(p);
+    Vec3 lo, hi;
+    std::uint32_t item = 0;
+    for (std::size_t i = begin; i < end; ++i) {
+      if (!box_of(i, lo, hi, item)) continue;
+      scratch.clear();
+      cells[p] += entries_of_box(lo, hi, item, scratch);
+      for (const Entry& e : scratch) m_part_entries[p * parts + owner_part(e.bucket, parts)].push_back(e);
+    }
+  });
+  build_parallel(pool);
+  std::size_t inserted = 0;
+  for (std::size_t c : cells) inserted += c;
+  return inserted;
+}
 
 }  // namespace tcb

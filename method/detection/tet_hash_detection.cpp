@@ -52,8 +52,37 @@ TetHashDetector::TetHashDetector(const World& world, const DetectionSettings& se
   m_hash = SpatialHash(settings.cell_size_m, table, settings.hash);
 }
 
-std::uint64_t TetHashDetector::hash_tets(const World& world, const CollisionPairs& pairs) {
+void TetHashDetector::record_hashed_cells(std::uint32_t id) {
+  if (m_hashed_cells.empty()) return;
+  std::int64_t* cells = &m_hashed_cells[6 * std::size_t(id)];
+  for (int a = 0; a < 3; ++a) {
+    cells[a] = m_hash.cell_of(m_boxes[id].lo[a]);
+    cells[3 + a] = m_hash.cell_of(m_boxes[id].hi[a]);
+  }
+}
+
+std::uint64_t TetHashDetector::hash_tets(const World& world, const CollisionPairs& pairs, WorkerPool* pool) {
   begin_hash();
+  if (pool && pool->threads() > 1) {
+    // Global tet ids run body by body in hash order, so ranges of ids are
+    // ranges of the serial walk.
+    const auto box_of = [&](std::size_t id, Vec3& lo, Vec3& hi, std::uint32_t& item) {
+      const std::int32_t b = m_owner[id];
+      const Body& body = world.bodies[static_cast<std::size_t>(b)];
+      const std::size_t t = id - m_body_tet_offset[static_cast<std::size_t>(b)];
+      if (!pairs.has_partner(static_cast<std::size_t>(b)) || body.mesh->is_degenerate[t]) return false;
+      TetBox& box = m_boxes[id];
+      tet_box(body, body.mesh->tets[t], box.lo, box.hi);
+      record_hashed_cells(static_cast<std::uint32_t>(id));
+      lo = box.lo;
+      hi = box.hi;
+      item = static_cast<std::uint32_t>(id);
+      return true;
+    };
+    const std::size_t cells = m_hash.insert_all_and_build(m_boxes.size(), box_of, *pool);
+    m_hash_body = world.bodies.size();
+    return work::kCellInsert * cells;
+  }
   bool done = false;
   const std::uint64_t work = hash_some_tets(world, pairs, std::numeric_limits<std::size_t>::max(), done);
   m_hash.build();
@@ -128,13 +157,7 @@ std::uint64_t TetHashDetector::hash_some_tets(const World& world, const Collisio
                                               bool& done) {
   return walk_tets(world, pairs, false, max_tets, done, [&](std::uint32_t id) {
     const std::uint64_t work = work::kCellInsert * m_hash.insert_box(m_boxes[id].lo, m_boxes[id].hi, id);
-    if (!m_hashed_cells.empty()) {
-      std::int64_t* cells = &m_hashed_cells[6 * std::size_t(id)];
-      for (int a = 0; a < 3; ++a) {
-        cells[a] = m_hash.cell_of(m_boxes[id].lo[a]);
-        cells[3 + a] = m_hash.cell_of(m_boxes[id].hi[a]);
-      }
-    }
+    record_hashed_cells(id);
     return work;
   });
 }

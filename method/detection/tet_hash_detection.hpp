@@ -50,7 +50,9 @@ class TetHashDetector {
   TetHashDetector(const World& world, const DetectionSettings& settings);
 
   /// Stage 1: hashes all tets at the current positions; returns work units.
-  std::uint64_t hash_tets(const World& world, const CollisionPairs& pairs);
+  /// With a pool, on its threads (SpatialHash::insert_all_and_build()): the
+  /// same table, stored boxes, work units and errors as without.
+  std::uint64_t hash_tets(const World& world, const CollisionPairs& pairs, WorkerPool* pool = nullptr);
   /// Stage 1 in pieces: begin_hash() empties the table; each hash_some_tets()
   /// hashes the next `max_tets` tets (in hash_tets()'s order) at the current
   /// positions, returns their work units, and sets `done` after the last;
@@ -106,6 +108,8 @@ class TetHashDetector {
   template <typename Visit>
   std::uint64_t walk_tets(const World& world, const CollisionPairs& pairs, bool movable_only, std::size_t max_tets,
                           bool& done, Visit&& visit);
+  /// With refresh enabled, keeps the cells tet `id`'s stored box was hashed in.
+  void record_hashed_cells(std::uint32_t id);
   SpatialHash m_hash;
   SpatialHash m_overflow;                             // refresh only; allocated by enable_refresh()
   bool m_overflow_active = false;                     // queries search m_overflow too

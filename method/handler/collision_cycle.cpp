@@ -258,7 +258,7 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
         break;
       case Stage::HashTets:
         if (!m_granularity.fine()) {
-          work = m_detector.hash_tets(world, m_pairs);
+          work = m_detector.hash_tets(world, m_pairs, m_pool.get());
           m_fresh_step = world.step_index;
           enter(Stage::QueryPoints, world);
         } else {

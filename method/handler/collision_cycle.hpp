@@ -66,7 +66,10 @@
 /// serial order with each query's own work: contacts, work units and where a
 /// budget stops are those of one thread. A batch holds for its step only and
 /// is dropped by begin() and by a refresh; the batch's time falls in the task
-/// that starts it, so under wall budgets a task is a batch long.
+/// that starts it, so under wall budgets a task is a batch long. The paper's
+/// HashTets task (not fine tasks, whose pieces stay serial) also runs on the
+/// pool (TetHashDetector::hash_tets with a pool): the same table, boxes and
+/// work units. The surface hash, depths and forces stay on one thread.
 
 #include <array>
 #include <cstdint>

@@ -76,3 +76,74 @@ TEST_CASE("spatial hash: every item is found in every cell it was inserted into"
     }
   }
 }
+
+TEST_CASE("spatial hash: the parallel insert and build make the serial table", "[hash][threads]") {
+  // Random boxes (some skipped) in a small table with many bucket collisions,
+  // over several epochs of one table: every cell's bucket lists the same
+  // items in the same order as after insert_box() one by one and build(),
+  // for 1, 2 and 3 threads (1: the pool runs everything on the caller).
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-2.0, 2.0), size(0.0, 0.6);
+  std::vector<std::pair<Vec3, Vec3>> boxes;
+  for (int i = 0; i < 500; ++i) {
+    const Vec3 lo(u(rng), u(rng), u(rng));
+    boxes.emplace_back(lo, lo + Vec3(size(rng), size(rng), size(rng)));
+  }
+  const auto skipped = [](std::size_t i) { return i % 7 == 3; };
+  for (const HashFunction function : {HashFunction::Paper, HashFunction::Mixed}) {
+    SpatialHash serial(0.25, 31, function);
+    serial.begin_epoch();
+    std::size_t serial_cells = 0;
+    for (std::size_t i = 0; i < boxes.size(); ++i)
+      if (!skipped(i)) serial_cells += serial.insert_box(boxes[i].first, boxes[i].second, static_cast<std::uint32_t>(i));
+    serial.build();
+    for (int threads = 1; threads <= 3; ++threads) {
+      WorkerPool pool(threads);
+      SpatialHash parallel(0.25, 31, function);
+      for (int epoch = 0; epoch < 3; ++epoch) {  // later epochs start from stale stamps
+        parallel.begin_epoch();
+        const std::size_t cells = parallel.insert_all_and_build(
+            boxes.size(),
+            [&](std::size_t i, Vec3& lo, Vec3& hi, std::uint32_t& item) {
+              if (skipped(i)) return false;
+              lo = boxes[i].first, hi = boxes[i].second, item = static_cast<std::uint32_t>(i);
+              return true;
+            },
+            pool);
+        INFO("threads " << threads << ", epoch " << epoch);
+        CHECK(cells == serial_cells);
+        CHECK(parallel.entry_count() == serial.entry_count());
+        CHECK(parallel.occupied_buckets() == serial.occupied_buckets());
+        for (const auto& [lo, hi] : boxes) {
+          std::vector<std::uint32_t> a, b;
+          serial.for_each_in_box(lo, hi, [&](std::uint32_t id) { a.push_back(id); });
+          parallel.for_each_in_box(lo, hi, [&](std::uint32_t id) { b.push_back(id); });
+          REQUIRE(a == b);
+        }
+      }
+    }
+  }
+}
+
+TEST_CASE("spatial hash: the parallel insert refuses the first oversized box, as the serial one", "[hash][threads]") {
+  std::vector<std::pair<Vec3, Vec3>> boxes(40, {Vec3(0, 0, 0), Vec3(0.1, 0.1, 0.1)});
+  boxes[25] = {Vec3(-1e3, -1e3, -1e3), Vec3(1e3, 1e3, 1e3)};
+  boxes[31] = {Vec3(-1e2, -1e2, -1e2), Vec3(1e2, 1e2, 1e2)};
+  std::string serial_message;
+  SpatialHash serial(0.01, 101, HashFunction::Mixed);
+  serial.begin_epoch();
+  try {
+    for (std::size_t i = 0; i < boxes.size(); ++i) serial.insert_box(boxes[i].first, boxes[i].second, 0);
+  } catch (const HashOverflow& e) {
+    serial_message = e.what();
+  }
+  REQUIRE_FALSE(serial_message.empty());
+  WorkerPool pool(3);
+  SpatialHash parallel(0.01, 101, HashFunction::Mixed);
+  parallel.begin_epoch();
+  const auto box_of = [&](std::size_t i, Vec3& lo, Vec3& hi, std::uint32_t& item) {
+    lo = boxes[i].first, hi = boxes[i].second, item = 0;
+    return true;
+  };
+  CHECK_THROWS_WITH(parallel.insert_all_and_build(boxes.size(), box_of, pool), serial_message);
+}
