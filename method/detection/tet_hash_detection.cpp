@@ -174,10 +174,14 @@ std::optional<Contact> TetHashDetector::query_point(const World& world, const Co
   std::uint32_t best = UINT32_MAX;
   const Vec3 grow = Vec3::Constant(margin_m);
   const auto test = [&](std::uint32_t id) {
-    if (scratch.tested[id] == scratch.query || id >= best) return;
-    scratch.tested[id] = scratch.query;
+    // The owner first: it rejects most entries (a body's own tets when
+    // self-collision is off), and those need no "met" stamp, which would be
+    // a second random access per entry (measured: 1.08x on the dog pair).
+    if (id >= best) return;
     const std::int32_t other = m_owner[id];
     if (!pairs.enabled(object, other)) return;
+    if (scratch.tested[id] == scratch.query) return;
+    scratch.tested[id] = scratch.query;
     const std::int32_t t = static_cast<std::int32_t>(id - m_body_tet_offset[other]);
     const Body& B = world.bodies[other];
     const Tet& tet = B.mesh->tets[t];
