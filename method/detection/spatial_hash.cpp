@@ -45,7 +45,7 @@ void SpatialHash::begin_epoch() {
     m_epoch = 1;
   }
   m_entries.clear();
-  m_parallel_entries = 0;
+  m_built_in_parts = false;
 }
 
 std::int64_t SpatialHash::cell_of(double x) const {
@@ -61,29 +61,10 @@ void SpatialHash::check_box(std::int64_t ni, std::int64_t nj, std::int64_t nk) c
 }
 
 std::size_t SpatialHash::insert_box(const Vec3& lo, const Vec3& hi, std::uint32_t item) {
-  const std::size_t first = m_entries.size();
-  const std::size_t cells = entries_of_box(lo, hi, item, m_entries);
-  for (std::size_t e = first; e < m_entries.size(); ++e) {
-    Bucket& bucket = m_buckets[m_entries[e].bucket];
-    if (bucket.stamp != m_epoch) {
-      bucket.stamp = m_epoch;
-      bucket.count = 0;
-    }
-    ++bucket.count;
-  }
-  return cells;
-}
-
-std::size_t SpatialHash::entries_of_box(const Vec3& lo, const Vec3& hi, std::uint32_t item,
-                                       std::vector<Entry>& out) const {
-  const std::int64_t i0 = cell_of(lo.x()), i1 = cell_of(hi.x()), j0 = cell_of(lo.y()), j1 = cell_of(hi.y()),
-                     k0 = cell_of(lo.z()), k1 = cell_of(hi.z());
-  check_box(i1 - i0 + 1, j1 - j0 + 1, k1 - k0 + 1);
-  const std::size_t before = out.size();
-  for (std::int64_t i = i0; i <= i1; ++i)
-    for (std::int64_t j = j0; j <= j1; ++j)
-      for (std::int64_t k = k0; k <= k1; ++k) out.push_back({item, static_cast<std::uint32_t>(bucket_of(i, j, k))});
-  return out.size() - before;
+  return buckets_of_box(lo, hi, [&](std::uint32_t b) {
+    m_entries.push_back({item, b});
+    count_entry(b);
+  });
 }
 
 void SpatialHash::build_parallel(WorkerPool& pool) {
@@ -98,23 +79,16 @@ void SpatialHash::build_parallel(WorkerPool& pool) {
     first[q + 1] = first[q];
     for (std::size_t p = 0; p < parts; ++p) first[q + 1] += m_part_entries[p * parts + q].size();
   }
-  m_parallel_entries = first[parts];
-  m_sorted.resize(m_parallel_entries);
+  m_sorted.resize(first[parts]);
+  m_built_in_parts = true;
   m_part_touched.resize(parts);
   pool.for_ranges(parts, [&](int, std::size_t begin, std::size_t end) {
     for (std::size_t q = begin; q < end; ++q) {
       std::vector<std::uint32_t>& touched = m_part_touched[q];
       touched.clear();
       for (std::size_t p = 0; p < parts; ++p)
-        for (const Entry& e : m_part_entries[p * parts + q]) {
-          Bucket& bucket = m_buckets[e.bucket];
-          if (bucket.stamp != m_epoch) {
-            bucket.stamp = m_epoch;
-            bucket.count = 0;
-            touched.push_back(e.bucket);
-          }
-          ++bucket.count;
-        }
+        for (const Entry& e : m_part_entries[p * parts + q])
+          if (count_entry(e.bucket)) touched.push_back(e.bucket);
       auto cursor = static_cast<std::uint32_t>(first[q]);
       for (std::uint32_t b : touched) {
         cursor += m_buckets[b].count;

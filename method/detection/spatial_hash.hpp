@@ -95,13 +95,7 @@ class SpatialHash {
   /// overlaps; returns the number of cells visited.
   template <typename F>
   std::size_t for_each_in_box(const Vec3& lo, const Vec3& hi, F&& f) const {
-    const std::int64_t i0 = cell_of(lo.x()), i1 = cell_of(hi.x()), j0 = cell_of(lo.y()), j1 = cell_of(hi.y()),
-                       k0 = cell_of(lo.z()), k1 = cell_of(hi.z());
-    check_box(i1 - i0 + 1, j1 - j0 + 1, k1 - k0 + 1);
-    for (std::int64_t i = i0; i <= i1; ++i)
-      for (std::int64_t j = j0; j <= j1; ++j)
-        for (std::int64_t k = k0; k <= k1; ++k) for_each_in_bucket(bucket_of(i, j, k), f);
-    return static_cast<std::size_t>((i1 - i0 + 1) * (j1 - j0 + 1) * (k1 - k0 + 1));
+    return buckets_of_box(lo, hi, [&](std::uint32_t b) { for_each_in_bucket(b, f); });
   }
 
   double cell_size_m() const { return m_cell_size; }
@@ -109,7 +103,7 @@ class SpatialHash {
   /// The grid index of coordinate x along any axis: floor(x / cell size), clamped.
   std::int64_t cell_of(double x) const;
   std::size_t table_size() const { return m_buckets.size(); }
-  std::size_t entry_count() const { return m_entries.size() + m_parallel_entries; }
+  std::size_t entry_count() const { return m_built_in_parts ? m_sorted.size() : m_entries.size(); }
   /// Buckets holding at least one entry in the current epoch.
   std::size_t occupied_buckets() const;
 
@@ -119,9 +113,31 @@ class SpatialHash {
     std::uint32_t bucket;
   };
   void check_box(std::int64_t ni, std::int64_t nj, std::int64_t nk) const;
-  /// Appends box [lo, hi]'s entries to `out` without touching the table;
-  /// returns their number. Safe to call concurrently.
-  std::size_t entries_of_box(const Vec3& lo, const Vec3& hi, std::uint32_t item, std::vector<Entry>& out) const;
+  /// Calls sink(bucket) for each cell box [lo, hi] overlaps, in insertion
+  /// order, without touching the table; returns the number of cells. Safe to
+  /// call concurrently.
+  template <typename Sink>
+  std::size_t buckets_of_box(const Vec3& lo, const Vec3& hi, Sink&& sink) const {
+    const std::int64_t i0 = cell_of(lo.x()), i1 = cell_of(hi.x()), j0 = cell_of(lo.y()), j1 = cell_of(hi.y()),
+                       k0 = cell_of(lo.z()), k1 = cell_of(hi.z());
+    check_box(i1 - i0 + 1, j1 - j0 + 1, k1 - k0 + 1);
+    for (std::int64_t i = i0; i <= i1; ++i)
+      for (std::int64_t j = j0; j <= j1; ++j)
+        for (std::int64_t k = k0; k <= k1; ++k) sink(static_cast<std::uint32_t>(bucket_of(i, j, k)));
+    return static_cast<std::size_t>((i1 - i0 + 1) * (j1 - j0 + 1) * (k1 - k0 + 1));
+  }
+  /// Counts one more entry in bucket b (emptying it first if its stamp is
+  /// stale); returns whether this was its first entry of the epoch.
+  bool count_entry(std::uint32_t b) {
+    Bucket& bucket = m_buckets[b];
+    const bool first = bucket.stamp != m_epoch;
+    if (first) {
+      bucket.stamp = m_epoch;
+      bucket.count = 0;
+    }
+    ++bucket.count;
+    return first;
+  }
   /// The part of `parts` that owns bucket b: contiguous ranges of buckets.
   std::size_t owner_part(std::size_t b, std::size_t parts) const { return b * parts / m_buckets.size(); }
   /// insert_all_and_build()'s second half: each part counts, places and
@@ -155,10 +171,10 @@ class SpatialHash {
   std::vector<std::uint32_t> m_sorted;  // items grouped by bucket (after build)
   // insert_all_and_build()'s lists: [p * parts + q] holds the entries part p
   // made for the buckets part q owns, in insertion order (kept between
-  // epochs, so they do not regrow); per part, one box's entries.
-  std::vector<std::vector<Entry>> m_part_entries, m_part_scratch;
+  // epochs, so they do not regrow).
+  std::vector<std::vector<Entry>> m_part_entries;
   std::vector<std::vector<std::uint32_t>> m_part_touched;  // per part: its buckets, in first-met order
-  std::size_t m_parallel_entries = 0;                      // entries placed by insert_all_and_build()
+  bool m_built_in_parts = false;  // this epoch's table came from insert_all_and_build() (m_entries is empty)
   int m_build_pass = 3;                 // 0..2 while a build is under way, 3 when built
   std::size_t m_build_cursor = 0;
   std::uint32_t m_build_next = 0;
@@ -166,23 +182,20 @@ class SpatialHash {
 
 template <typename BoxOf>
 std::size_t SpatialHash::insert_all_and_build(std::size_t n, BoxOf&& box_of, WorkerPool& pool) {
-  if (!m_entries.empty() || m_parallel_entries != 0)
+  if (!m_entries.empty() || m_built_in_parts)
     throw std::logic_error("SpatialHash::insert_all_and_build needs an empty table");
   const std::size_t parts = static_cast<std::size_t>(pool.threads());
   m_part_entries.resize(parts * parts);
-  m_part_scratch.resize(parts);
   std::vector<std::size_t> cells(parts, 0);
   pool.for_ranges(n, [&](int part, std::size_t begin, std::size_t end) {
     const std::size_t p = static_cast<std::size_t>(part);
-    for (std::size_t q = 0; q < parts; ++q) m_part_entries[p * parts + q].clear();
-    std::vector<Entry>& scratch = m_part_scratch.at(p);
+    std::vector<Entry>* lists = &m_part_entries[p * parts];
+    for (std::size_t q = 0; q < parts; ++q) lists[q].clear();
     Vec3 lo, hi;
     std::uint32_t item = 0;
     for (std::size_t i = begin; i < end; ++i) {
       if (!box_of(i, lo, hi, item)) continue;
-      scratch.clear();
-      cells[p] += entries_of_box(lo, hi, item, scratch);
-      for (const Entry& e : scratch) m_part_entries[p * parts + owner_part(e.bucket, parts)].push_back(e);
+      cells[p] += buckets_of_box(lo, hi, [&](std::uint32_t b) { lists[owner_part(b, parts)].push_back({item, b}); });
     }
   });
   build_parallel(pool);

@@ -52,6 +52,10 @@ TetHashDetector::TetHashDetector(const World& world, const DetectionSettings& se
   m_hash = SpatialHash(settings.cell_size_m, table, settings.hash);
 }
 
+void TetHashDetector::store_box(const Body& body, std::size_t t, std::uint32_t id) {
+  tet_box(body, body.mesh->tets[t], m_boxes[id].lo, m_boxes[id].hi);
+}
+
 void TetHashDetector::record_hashed_cells(std::uint32_t id) {
   if (m_hashed_cells.empty()) return;
   std::int64_t* cells = &m_hashed_cells[6 * std::size_t(id)];
@@ -71,12 +75,11 @@ std::uint64_t TetHashDetector::hash_tets(const World& world, const CollisionPair
       const Body& body = world.bodies[static_cast<std::size_t>(b)];
       const std::size_t t = id - m_body_tet_offset[static_cast<std::size_t>(b)];
       if (!pairs.has_partner(static_cast<std::size_t>(b)) || body.mesh->is_degenerate[t]) return false;
-      TetBox& box = m_boxes[id];
-      tet_box(body, body.mesh->tets[t], box.lo, box.hi);
-      record_hashed_cells(static_cast<std::uint32_t>(id));
-      lo = box.lo;
-      hi = box.hi;
       item = static_cast<std::uint32_t>(id);
+      store_box(body, t, item);
+      record_hashed_cells(item);
+      lo = m_boxes[id].lo;
+      hi = m_boxes[id].hi;
       return true;
     };
     const std::size_t cells = m_hash.insert_all_and_build(m_boxes.size(), box_of, *pool);
@@ -129,7 +132,7 @@ std::uint64_t TetHashDetector::walk_tets(const World& world, const CollisionPair
       const std::size_t t = m_hash_tet;
       if (degenerate[t]) continue;
       const std::uint32_t id = m_body_tet_offset[m_hash_body] + static_cast<std::uint32_t>(t);
-      tet_box(body, body.mesh->tets[t], m_boxes[id].lo, m_boxes[id].hi);
+      store_box(body, t, id);
       work += visit(id);
     }
   }

@@ -108,6 +108,9 @@ class TetHashDetector {
   template <typename Visit>
   std::uint64_t walk_tets(const World& world, const CollisionPairs& pairs, bool movable_only, std::size_t max_tets,
                           bool& done, Visit&& visit);
+  /// Stores tet t of body (global id `id`)'s current AABB: what every
+  /// hashing path (serial walk, parallel parts, refresh) records per tet.
+  void store_box(const Body& body, std::size_t t, std::uint32_t id);
   /// With refresh enabled, keeps the cells tet `id`'s stored box was hashed in.
   void record_hashed_cells(std::uint32_t id);
   SpatialHash m_hash;

@@ -16,28 +16,25 @@ using V = Eigen::Vector3d;
 
 namespace {
 
-// Independent reference: the exact determinant of integer points in 128-bit
-// integers (coordinates below 2^38 keep every product below 2^120).
-int reference_sign(const std::array<std::int64_t, 12>& p) {
+// Independent reference: the sign of the 3x3 determinant whose rows are
+// points r0, r1, r2 minus point o (points are p[3i..3i+2]), in 128-bit
+// integers: exact while every product of three differences stays below 2^127.
+int difference_det_sign(const std::array<std::int64_t, 12>& p, int o, int r0, int r1, int r2) {
   __extension__ typedef __int128 I;
-  const I bax = p[3] - p[0], bay = p[4] - p[1], baz = p[5] - p[2];
-  const I cax = p[6] - p[0], cay = p[7] - p[1], caz = p[8] - p[2];
-  const I dax = p[9] - p[0], day = p[10] - p[1], daz = p[11] - p[2];
-  const I det = bax * (cay * daz - caz * day) - bay * (cax * daz - caz * dax) + baz * (cax * day - cay * dax);
+  const auto d = [&](int r, int axis) { return I(p[3 * r + axis]) - I(p[3 * o + axis]); };
+  const I det = d(r0, 0) * (d(r1, 1) * d(r2, 2) - d(r1, 2) * d(r2, 1)) -
+                d(r0, 1) * (d(r1, 0) * d(r2, 2) - d(r1, 2) * d(r2, 0)) +
+                d(r0, 2) * (d(r1, 0) * d(r2, 1) - d(r1, 1) * d(r2, 0));
   return det > 0 ? 1 : (det < 0 ? -1 : 0);
 }
 
+// orient3d's sign of integer points, rows b - a, c - a, d - a (coordinates
+// below 2^38 keep every product below 2^120).
+int reference_sign(const std::array<std::int64_t, 12>& p) { return difference_det_sign(p, 0, 1, 2, 3); }
+
 // The same sign from rows a - d, b - d, c - d (det[b-a, c-a, d-a] =
-// -det[a-d, b-d, c-d]): exact while every product of three such differences
-// stays below 2^127.
-int reference_sign_from_d(const std::array<std::int64_t, 12>& p) {
-  __extension__ typedef __int128 I;
-  const I ax = p[0] - p[9], ay = p[1] - p[10], az = p[2] - p[11];
-  const I bx = p[3] - p[9], by = p[4] - p[10], bz = p[5] - p[11];
-  const I cx = p[6] - p[9], cy = p[7] - p[10], cz = p[8] - p[11];
-  const I det = ax * (by * cz - bz * cy) - ay * (bx * cz - bz * cx) + az * (bx * cy - by * cx);
-  return det > 0 ? -1 : (det < 0 ? 1 : 0);
-}
+// -det[a-d, b-d, c-d]), for points far apart whose differences from d are small.
+int reference_sign_from_d(const std::array<std::int64_t, 12>& p) { return -difference_det_sign(p, 3, 0, 1, 2); }
 
 int naive_sign(const V& a, const V& b, const V& c, const V& d) {
   const double det = (b - a).dot((c - a).cross(d - a));
