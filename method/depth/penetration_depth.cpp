@@ -15,7 +15,6 @@ SurfaceHash::SurfaceHash(const World& world, double cell_size_m, HashFunction ha
     total += static_cast<std::uint32_t>(n);
     m_owner.insert(m_owner.end(), n, static_cast<std::int32_t>(b));
   }
-  m_seen.assign(total, 0);
   m_hash = SpatialHash(cell_size_m, next_prime(2 * std::size_t(total) + 1), hash);
 }
 
@@ -29,7 +28,8 @@ std::uint64_t SurfaceHash::hash_triangle(const World& world, std::int32_t body, 
 
 std::uint64_t border_edge_crossing(const World& world, const Contact& c, std::int32_t q_vertex,
                                    const std::vector<Contact>& contacts, const ContactLookup& lookup,
-                                   SurfaceHash& surface, double margin_m, BorderSum& sum) {
+                                   const SurfaceHash& surface, SurfaceHash::QueryScratch& scratch, double margin_m,
+                                   BorderSum& sum) {
   const std::int32_t qi = lookup[c.object][q_vertex];
   if (qi >= 0 && contacts[qi].other == c.other) return 0;  // both inside B: not a border edge
   std::uint64_t work = 0;
@@ -40,7 +40,7 @@ std::uint64_t border_edge_crossing(const World& world, const Contact& c, std::in
   double best_t = -1.0;
   Vec3 best_normal = Vec3::Zero();
   const Vec3 grow = Vec3::Constant(margin_m);
-  surface.for_each_candidate(c.other, p.cwiseMin(q) - grow, p.cwiseMax(q) + grow, [&](std::int32_t tri) {
+  surface.for_each_candidate(c.other, p.cwiseMin(q) - grow, p.cwiseMax(q) + grow, scratch, [&](std::int32_t tri) {
     work += work::kCandidate;
     const Triangle& f = B.mesh->surface[tri];
     const Vec3 &a = B.x_m[f[0]], &b = B.x_m[f[1]], &cc = B.x_m[f[2]];
@@ -81,12 +81,13 @@ void finish_border_depth(Contact& c, const BorderSum& sum) {
 }
 
 std::uint64_t border_point_depth(const World& world, Contact& c, const std::vector<Contact>& contacts,
-                                 const ContactLookup& lookup, SurfaceHash& surface, double margin_m) {
+                                 const ContactLookup& lookup, const SurfaceHash& surface,
+                                 SurfaceHash::QueryScratch& scratch, double margin_m) {
   std::uint64_t work = work::kBorderPoint;
   BorderSum sum;
   const auto& adjacency = world.bodies[c.object].mesh->vertex_neighbours;
   for (const std::int32_t* q = adjacency.begin(c.vertex); q != adjacency.end(c.vertex); ++q)
-    work += border_edge_crossing(world, c, *q, contacts, lookup, surface, margin_m, sum);
+    work += border_edge_crossing(world, c, *q, contacts, lookup, surface, scratch, margin_m, sum);
   finish_border_depth(c, sum);
   return work;
 }

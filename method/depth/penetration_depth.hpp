@@ -44,13 +44,21 @@ class SurfaceHash {
   void begin_build() { m_hash.begin_build(); }
   bool build_some(std::size_t max_visits) { return m_hash.build_some(max_visits); }
 
+  /// Per-query "met" stamps over every triangle: one per thread that queries
+  /// concurrently (a built, unchanging hash may be queried from many threads).
+  struct QueryScratch {
+    std::vector<std::uint64_t> seen;
+    std::uint64_t query = 0;
+  };
+  QueryScratch make_scratch() const { return QueryScratch{std::vector<std::uint64_t>(m_owner.size(), 0), 0}; }
+
   /// Calls f(triangle) for each distinct triangle of `body` hashed in the cells of [lo, hi].
   template <typename F>
-  void for_each_candidate(std::int32_t body, const Vec3& lo, const Vec3& hi, F&& f) {
-    ++m_query;
+  void for_each_candidate(std::int32_t body, const Vec3& lo, const Vec3& hi, QueryScratch& scratch, F&& f) const {
+    ++scratch.query;
     m_hash.for_each_in_box(lo, hi, [&](std::uint32_t id) {
-      if (m_owner[id] != body || m_seen[id] == m_query) return;
-      m_seen[id] = m_query;
+      if (m_owner[id] != body || scratch.seen[id] == scratch.query) return;
+      scratch.seen[id] = scratch.query;
       f(static_cast<std::int32_t>(id - m_offset[body]));
     });
   }
@@ -59,8 +67,6 @@ class SurfaceHash {
   SpatialHash m_hash;
   std::vector<std::uint32_t> m_offset;
   std::vector<std::int32_t> m_owner;
-  std::vector<std::uint64_t> m_seen;
-  std::uint64_t m_query = 0;
 };
 
 /// border_point_depth() in pieces, one border edge a piece, for schedules
@@ -78,7 +84,8 @@ struct BorderSum {
 };
 std::uint64_t border_edge_crossing(const World& world, const Contact& contact, std::int32_t q_vertex,
                                    const std::vector<Contact>& contacts, const ContactLookup& lookup,
-                                   SurfaceHash& surface, double margin_m, BorderSum& sum);
+                                   const SurfaceHash& surface, SurfaceHash::QueryScratch& scratch, double margin_m,
+                                   BorderSum& sum);
 void finish_border_depth(Contact& contact, const BorderSum& sum);
 
 /// Border-point depth of one contact (see file comment). Sets depth,
@@ -87,8 +94,12 @@ void finish_border_depth(Contact& contact, const BorderSum& sum);
 /// `margin_m` > 0: the surface triangles may have moved up to that far since
 /// they were hashed; each edge's candidate box is grown by it (the exact
 /// crossing test uses the current positions). 0: the paper's search.
+/// It writes only `contact` and reads of the other contacts only their
+/// `other` (through the lookup), so with the contact list unchanged it may run
+/// for several contacts concurrently, each thread with its own scratch.
 std::uint64_t border_point_depth(const World& world, Contact& contact, const std::vector<Contact>& contacts,
-                                 const ContactLookup& lookup, SurfaceHash& surface, double margin_m = 0.0);
+                                 const ContactLookup& lookup, const SurfaceHash& surface,
+                                 SurfaceHash::QueryScratch& scratch, double margin_m = 0.0);
 
 /// Propagated depth of one contact at `layer` >= 1 from neighbours whose depth
 /// comes from layers below it. Returns work units.

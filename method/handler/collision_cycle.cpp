@@ -27,6 +27,8 @@ CollisionCycle::CollisionCycle(const World& world, CollisionSettings settings, D
     m_pool = std::make_unique<WorkerPool>(m_settings.threads);
     for (int t = 0; t < m_settings.threads; ++t) m_thread_scratch.push_back(m_detector.make_scratch());
   }
+  // [0] serves the serial path; with a pool, one a thread.
+  for (int t = 0; t < (m_pool ? m_settings.threads : 1); ++t) m_surface_scratch.push_back(m_surface.make_scratch());
   m_lookup.resize(world.bodies.size());
   for (std::size_t b = 0; b < world.bodies.size(); ++b) {
     m_lookup[b].assign(world.bodies[b].x_m.size(), -1);
@@ -140,6 +142,7 @@ void CollisionCycle::add_contact(const Contact& c) {
 void CollisionCycle::enter(Stage stage, const World& world) {
   m_stage = stage;
   m_cursor = 0;
+  m_batch.clear();  // a batch belongs to the stage that made it
   if (stage == Stage::HashSurface) {
     // The bodies some point is inside, ascending; their triangles are walked
     // by a cursor (m_surface_body, m_cursor), one a task.
@@ -153,6 +156,7 @@ void CollisionCycle::enter(Stage stage, const World& world) {
     m_surface_margin_m = 0.0;  // a new surface hash starts now
   } else if (stage == Stage::BorderDepth) {
     m_edge = 0;
+    m_depth_check_step = -1;  // a new contact list: decided afresh
   } else if (stage == Stage::Propagate) {
     m_layer = 0;
     if (m_granularity.fine()) start_layer_scan();  // stage BuildLayer
@@ -361,7 +365,16 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
           if (c.separated) {
             ++m_cursor;
           } else if (!m_granularity.fine()) {
-            work += border_point_depth(world, c, m_contacts, m_lookup, m_surface, m_surface_margin_m);
+            if (m_pool && depth_batch_allowed(world)) {
+              // The same task with its depth computed ahead (see depth_batch).
+              if (!batch_holds(world)) depth_batch(world, budget);
+              const Answer& answer = m_batch[m_cursor - m_batch_begin];
+              work += answer.work;
+              c = *answer.hit;
+            } else {
+              work += border_point_depth(world, c, m_contacts, m_lookup, m_surface, m_surface_scratch[0],
+                                         m_surface_margin_m);
+            }
             c.depth_offset_m = contact_offset_m(world, c);
             c.depth_step = world.step_index;
             ++m_cursor;
@@ -375,7 +388,8 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
             for (bool crossed = false; !crossed && q != adjacency.end(c.vertex); ++q, ++m_edge) {
               const std::int32_t qi = m_lookup[c.object][*q];
               if (qi >= 0 && m_contacts[qi].other == c.other) continue;  // not a border edge
-              work += border_edge_crossing(world, c, *q, m_contacts, m_lookup, m_surface, m_surface_margin_m,
+              work += border_edge_crossing(world, c, *q, m_contacts, m_lookup, m_surface, m_surface_scratch[0],
+                                           m_surface_margin_m,
                                            m_border_sum);
               crossed = true;
             }
@@ -459,16 +473,50 @@ bool CollisionCycle::batch_holds(const World& world) const {
   return m_batch_step == world.step_index && m_cursor >= m_batch_begin && m_cursor < m_batch_begin + m_batch.size();
 }
 
-void CollisionCycle::query_batch(const World& world, const Budget& budget) {
-  // Without a budget every remaining point at once; under one, a few dozen
-  // points a thread, so a batch (all of it charged to the task that starts
-  // it) stays short. Answers past where the budget stops are dropped: the
-  // next step asks again at its own positions.
+std::size_t CollisionCycle::batch_size(std::size_t remaining, const Budget& budget) const {
+  // Without a budget every remaining task at once; under one, a few dozen
+  // a thread, so a batch (all of it charged to the task that starts it)
+  // stays short. Answers past where the budget stops are dropped: the next
+  // step asks again at its own positions.
   constexpr std::size_t kPerThread = 64;
-  const std::size_t remaining = m_queries.size() - m_cursor;
-  const std::size_t size = budget.kind() == BudgetKind::None
-                               ? remaining
-                               : std::min(remaining, kPerThread * static_cast<std::size_t>(m_pool->threads()));
+  return budget.kind() == BudgetKind::None
+             ? remaining
+             : std::min(remaining, kPerThread * static_cast<std::size_t>(m_pool->threads()));
+}
+
+bool CollisionCycle::depth_batch_allowed(const World& world) {
+  // A border depth reads the other contacts' `other`, which only the
+  // re-detection opening a later point's task changes (or separates). When
+  // every point from the cursor on was detected at this step's positions,
+  // none is re-detected, and each depth depends on nothing its predecessors
+  // write: the depths may be computed ahead. Decided once a step (within a
+  // step, only the tasks themselves change the contacts from the cursor on).
+  if (m_depth_check_step != world.step_index) {
+    m_depth_check_step = world.step_index;
+    m_depth_batchable = std::all_of(m_contacts.begin() + static_cast<std::ptrdiff_t>(m_cursor), m_contacts.end(),
+                                    [&](const Contact& c) { return c.detected_step == world.step_index; });
+  }
+  return m_depth_batchable;
+}
+
+void CollisionCycle::depth_batch(const World& world, const Budget& budget) {
+  const std::size_t size = batch_size(m_contacts.size() - m_cursor, budget);
+  m_batch.assign(size, Answer{});
+  m_batch_begin = m_cursor;
+  m_batch_step = world.step_index;
+  m_pool->for_ranges(size, [&](int part, std::size_t begin, std::size_t end) {
+    SurfaceHash::QueryScratch& scratch = m_surface_scratch[static_cast<std::size_t>(part)];
+    for (std::size_t i = begin; i < end; ++i) {
+      Contact c = m_contacts[m_batch_begin + i];
+      m_batch[i].work =
+          border_point_depth(world, c, m_contacts, m_lookup, m_surface, scratch, m_surface_margin_m);
+      m_batch[i].hit = c;
+    }
+  });
+}
+
+void CollisionCycle::query_batch(const World& world, const Budget& budget) {
+  const std::size_t size = batch_size(m_queries.size() - m_cursor, budget);
   m_batch.assign(size, Answer{});
   m_batch_begin = m_cursor;
   m_batch_step = world.step_index;

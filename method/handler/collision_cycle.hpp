@@ -69,7 +69,13 @@
 /// that starts it, so under wall budgets a task is a batch long. The paper's
 /// HashTets task (not fine tasks, whose pieces stay serial) also runs on the
 /// pool (TetHashDetector::hash_tets with a pool): the same table, boxes and
-/// work units. The surface hash, depths and forces stay on one thread.
+/// work units. The paper's BorderDepth tasks (not fine tasks) are batched the
+/// same way when every contact from the cursor on was detected at the
+/// current step's positions, so that no task ahead re-detects a point (a
+/// re-detection changes what later depths read): each depth is computed on a
+/// copy of its contact and taken in order, one a task, with its own work.
+/// A cycle resumed in a later step re-detects its points, and its depths run
+/// serially. The surface hash, propagation and forces stay on one thread.
 
 #include <array>
 #include <cstdint>
@@ -219,6 +225,9 @@ class CollisionCycle {
   bool scan_layer_some(const World& world, std::size_t max_contacts);
   bool batch_holds(const World& world) const;
   void query_batch(const World& world, const Budget& budget);
+  std::size_t batch_size(std::size_t remaining, const Budget& budget) const;
+  bool depth_batch_allowed(const World& world);
+  void depth_batch(const World& world, const Budget& budget);
 
   CollisionSettings m_settings;
   DetectionMode m_mode;
@@ -270,6 +279,9 @@ class CollisionCycle {
   std::vector<Answer> m_batch;          // answers for query positions [m_batch_begin, m_batch_begin + size)
   std::size_t m_batch_begin = 0;
   std::int64_t m_batch_step = -1;       // the step whose positions and tables they were computed at
+  std::vector<SurfaceHash::QueryScratch> m_surface_scratch;  // [0] the serial path's; with a pool, one a thread
+  std::int64_t m_depth_check_step = -1;  // the step depth_batch_allowed() last decided at
+  bool m_depth_batchable = false;
 };
 
 }  // namespace tcb

@@ -81,6 +81,54 @@ TEST_CASE("fine tasks find exactly the paper's contacts and depths, and brute fo
   CHECK(fine_border_max < paper_border_max);  // the border work really was split
 }
 
+TEST_CASE("threads change neither contacts, depths nor any task's work, one task a call or all at once",
+          "[cycle][threads]") {
+  // With collision.threads > 1 the queries and the paper's border depths are
+  // computed ahead in batches (64 a thread under a budget, everything
+  // without one) and taken one a task: every task's work and stage, and
+  // every contact field, must be one thread's.
+  for (const auto& [name, scene] : test::collision_scenes()) {
+    INFO(name);
+    using Trace = std::vector<std::pair<int, std::uint64_t>>;  // per task: stage, work
+    Trace serial_trace;
+    Found serial_single, serial_whole;
+    for (const int threads : {1, 2, 3}) {
+      INFO("threads " << threads);
+      World w = build_world(scene);  // never stepped: every contact is detected at this step's positions
+      CollisionSettings settings = test::settings_of(w, scene);
+      settings.threads = threads;
+      CollisionCycle cycle(w, settings);
+      cycle.begin(w);
+      Trace trace;
+      for (bool done = false; !done;) {
+        Budget zero = Budget::work_units(0);
+        const int stage = static_cast<int>(cycle.stage());
+        done = cycle.advance(w, zero);
+        trace.emplace_back(stage, zero.max_task_work());
+        REQUIRE(trace.size() < 10000000);
+      }
+      CollisionCycle whole(w, settings);
+      whole.begin(w);
+      Budget unlimited = Budget::unlimited();
+      REQUIRE(whole.advance(w, unlimited));
+      if (threads == 1) {
+        serial_trace = trace;
+        serial_single = found(cycle);
+        serial_whole = found(whole);
+        REQUIRE(!serial_single.empty());
+        CHECK(serial_single == serial_whole);
+        CHECK(std::count_if(serial_single.begin(), serial_single.end(), [](const auto& f) {
+                return std::get<4>(f) == static_cast<int>(DepthSource::Border);
+              }) > 0);  // border depths were computed, so their batches were used
+      } else {
+        CHECK(trace == serial_trace);
+        CHECK(found(cycle) == serial_single);
+        CHECK(found(whole) == serial_whole);
+      }
+    }
+  }
+}
+
 TEST_CASE("a ticking clock interrupts the tet hashing and resumes it next step", "[cycle][granularity]") {
   const test::TestScene scene = test::collision_scenes()[0].second;
   World world = build_world(scene);
