@@ -66,7 +66,9 @@
 /// serial order with each query's own work: contacts, work units and where a
 /// budget stops are those of one thread. A batch holds for its step only and
 /// is dropped by begin() and by a refresh; the batch's time falls in the task
-/// that starts it, so under wall budgets a task is a batch long. The paper's
+/// that starts it, so under wall budgets a task is a batch long, and a batch
+/// is sized to the time left at the recent time per item (at least one item
+/// a thread, at most 64). The paper's
 /// HashTets task (not fine tasks, whose pieces stay serial) also runs on the
 /// pool (TetHashDetector::hash_tets with a pool): the same table, boxes and
 /// work units. The paper's BorderDepth tasks (not fine tasks) are batched the
@@ -226,6 +228,9 @@ class CollisionCycle {
   bool batch_holds(const World& world) const;
   void query_batch(const World& world, const Budget& budget);
   std::size_t batch_size(std::size_t remaining, const Budget& budget) const;
+  /// The pool's for_ranges over a batch; under a wall budget, also notes
+  /// what an item took (m_batch_item_ms).
+  void run_batch(std::size_t size, const Budget& budget, const WorkerPool::RangeFunction& f);
   bool depth_batch_allowed(const World& world);
   void depth_batch(const World& world, const Budget& budget);
 
@@ -282,6 +287,12 @@ class CollisionCycle {
   std::vector<SurfaceHash::QueryScratch> m_surface_scratch;  // [0] the serial path's; with a pool, one a thread
   std::int64_t m_depth_check_step = -1;  // the step depth_batch_allowed() last decided at
   bool m_depth_batchable = false;
+  std::array<double, kCostStages> m_batch_item_ms{};  // wall budgets: recent batch time per item, per stage
 };
+
+/// A batch's size under a wall budget: as many items as fit in `left_ms` at
+/// `item_ms` each (the stage's recent time per item; <= 0: none measured
+/// yet, then 4 a thread), at least one a thread, at most `most`.
+std::size_t wall_batch_items(double left_ms, double item_ms, std::size_t threads, std::size_t most);
 
 }  // namespace tcb

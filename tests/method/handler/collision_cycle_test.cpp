@@ -124,9 +124,34 @@ TEST_CASE("threads change neither contacts, depths nor any task's work, one task
         CHECK(trace == serial_trace);
         CHECK(found(cycle) == serial_single);
         CHECK(found(whole) == serial_whole);
+        // Under a wall budget (a clock ticking 1 ms a reading, 5 ms a call)
+        // batches are sized by time, so where calls stop differs; at fixed
+        // positions the contacts may not.
+        double now = 0.0;
+        const ClockMs clock = [&now] { return now += 1.0; };
+        CollisionCycle timed(w, settings);
+        timed.set_clock(clock);
+        timed.begin(w);
+        int calls = 0;
+        for (bool done = false; !done; ++calls) {
+          Budget b = Budget::wall_ms(5.0, clock);
+          done = timed.advance(w, b);
+          REQUIRE(calls < 1000000);
+        }
+        CHECK(calls > 1);
+        CHECK(found(timed) == serial_single);
       }
     }
   }
+}
+
+TEST_CASE("under a wall budget a batch is sized to the time left", "[cycle][threads]") {
+  CHECK(wall_batch_items(3.0, 0.0, 2, 128) == 8);     // nothing measured: 4 a thread
+  CHECK(wall_batch_items(3.0, 0.1, 2, 128) == 30);    // 3 ms at 0.1 ms an item
+  CHECK(wall_batch_items(100.0, 0.1, 2, 128) == 128);  // never more than the most
+  CHECK(wall_batch_items(0.05, 0.1, 2, 128) == 2);    // never less than one a thread
+  CHECK(wall_batch_items(-1.0, 0.1, 3, 192) == 3);    // past the limit already: one a thread
+  CHECK(wall_batch_items(1.0, 0.1, 4, 2) == 2);       // the most wins over the threads
 }
 
 TEST_CASE("a ticking clock interrupts the tet hashing and resumes it next step", "[cycle][granularity]") {
