@@ -45,17 +45,28 @@ Json world_json(const SceneDesc& scene, const World& world) {
               {"objects", objects}};
 }
 
-// The process's peak resident memory by the end of the run, and per tet of the
-// world (every body's tets, passive ones too: the figure a user sizes a
-// machine by). The whole process's peak, oracle and solver included.
-Json peak_memory_json(const World& world) {
-  const std::optional<std::uint64_t> peak = peak_resident_bytes();
-  if (!peak) return nullptr;
+// {bytes_key: bytes, tets, bytes_per_tet} over the world's tets (every
+// body's, passive ones too: the figure a user sizes a machine by).
+Json per_tet_json(const char* bytes_key, std::uint64_t bytes, const World& world) {
   std::uint64_t tets = 0;
   for (const Body& b : world.bodies) tets += b.mesh->tet_count();
-  return Json{{"resident_bytes", *peak},
+  return Json{{bytes_key, bytes},
               {"tets", tets},
-              {"bytes_per_tet", tets ? Json(static_cast<double>(*peak) / static_cast<double>(tets)) : Json(nullptr)}};
+              {"bytes_per_tet", tets ? Json(static_cast<double>(bytes) / static_cast<double>(tets)) : Json(nullptr)}};
+}
+
+// The process's peak resident memory by the end of the run (oracle and
+// solver included), per tet.
+Json peak_memory_json(const World& world) {
+  const std::optional<std::uint64_t> peak = peak_resident_bytes();
+  return peak ? per_tet_json("resident_bytes", *peak, world) : Json(nullptr);
+}
+
+// The handler's own data at the end of the run (its containers only grow, so
+// this is their peak), per tet; null for a method that does not count it.
+Json collision_memory_json(const World& world, const CollisionHandler& handler) {
+  const std::optional<std::size_t> bytes = handler.memory_bytes();
+  return bytes ? per_tet_json("bytes", *bytes, world) : Json(nullptr);
 }
 
 Json settings_json(const MethodSettings& settings) {
@@ -236,6 +247,7 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
   run["unstable_reason"] = outcome.reason.empty() ? Json(nullptr) : Json(outcome.reason);
   run["world"] = world_json(scene, world);
   run["peak_memory"] = peak_memory_json(world);
+  run["collision_memory"] = collision_memory_json(world, *handler);
   run["summary"] = summary;
   if (replay) replay->finish();
   record.finish(run);

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "method/geometry/perturbed_predicates.hpp"
+#include "method/handler/heap_bytes.hpp"
 #include "method/handler/work_units.hpp"
 
 namespace tcb {
@@ -16,6 +17,10 @@ SurfaceHash::SurfaceHash(const World& world, double cell_size_m, HashFunction ha
     m_owner.insert(m_owner.end(), n, static_cast<std::int32_t>(b));
   }
   m_hash = SpatialHash(cell_size_m, next_prime(2 * std::size_t(total) + 1), hash);
+}
+
+std::size_t SurfaceHash::memory_bytes() const {
+  return m_hash.memory_bytes() + heap_bytes(m_offset) + heap_bytes(m_owner);
 }
 
 std::uint64_t SurfaceHash::hash_triangle(const World& world, std::int32_t body, std::int32_t triangle) {

@@ -51,6 +51,8 @@ class SurfaceHash {
     std::uint64_t query = 0;
   };
   QueryScratch make_scratch() const { return QueryScratch{std::vector<std::uint64_t>(m_owner.size(), 0), 0}; }
+  /// Heap bytes of the table and its triangle index (not the scratches).
+  std::size_t memory_bytes() const;
 
   /// Calls f(triangle) for each distinct triangle of `body` hashed in the cells of [lo, hi].
   template <typename F>

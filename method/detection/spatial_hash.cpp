@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "method/handler/heap_bytes.hpp"
+
 namespace tcb {
 
 std::uint64_t hash_cell(HashFunction function, std::int64_t i, std::int64_t j, std::int64_t k) {
@@ -149,6 +151,11 @@ bool SpatialHash::build_some(std::size_t max_visits) {
     if (max_visits == 0 && m_build_pass < 3) return false;
   }
   return true;
+}
+
+std::size_t SpatialHash::memory_bytes() const {
+  return heap_bytes(m_buckets) + heap_bytes(m_entries) + heap_bytes(m_sorted) + heap_bytes(m_part_entries) +
+         heap_bytes(m_part_touched);
 }
 
 std::size_t SpatialHash::occupied_buckets() const {

@@ -106,6 +106,8 @@ class SpatialHash {
   std::size_t entry_count() const { return m_built_in_parts ? m_sorted.size() : m_entries.size(); }
   /// Buckets holding at least one entry in the current epoch.
   std::size_t occupied_buckets() const;
+  /// Heap bytes of the table and its lists (heap_bytes.hpp).
+  std::size_t memory_bytes() const;
 
  private:
   struct Entry {

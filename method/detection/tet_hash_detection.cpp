@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "method/geometry/perturbed_predicates.hpp"
+#include "method/handler/heap_bytes.hpp"
 #include "method/handler/work_units.hpp"
 
 namespace tcb {
@@ -50,6 +51,11 @@ TetHashDetector::TetHashDetector(const World& world, const DetectionSettings& se
   m_scratch = make_scratch();
   const std::size_t table = settings.table_size ? settings.table_size : next_prime(2 * std::size_t(total) + 1);
   m_hash = SpatialHash(settings.cell_size_m, table, settings.hash);
+}
+
+std::size_t TetHashDetector::memory_bytes() const {
+  return m_hash.memory_bytes() + m_overflow.memory_bytes() + heap_bytes(m_hashed_cells) + heap_bytes(m_body_tet_offset) +
+         heap_bytes(m_owner) + heap_bytes(m_boxes) + heap_bytes(m_scratch.tested);
 }
 
 void TetHashDetector::store_box(const Body& body, std::size_t t, std::uint32_t id) {

@@ -99,6 +99,8 @@ class TetHashDetector {
                                      QueryScratch& scratch) const;
 
   const SpatialHash& hash() const { return m_hash; }
+  /// Heap bytes of the tables, boxes and the single-threaded scratch.
+  std::size_t memory_bytes() const;
 
  private:
   /// hash_some_tets()'s and refresh_some_tets()'s walk: from the cursor, the

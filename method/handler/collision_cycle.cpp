@@ -5,6 +5,7 @@
 #include <limits>
 #include <tuple>
 
+#include "method/handler/heap_bytes.hpp"
 #include "method/handler/work_units.hpp"
 
 namespace tcb {
@@ -562,6 +563,16 @@ std::optional<Contact> CollisionCycle::detect(const World& world, std::int32_t b
   return m_mode == DetectionMode::SpatialHash
              ? m_detector.query_point(world, m_pairs, body, vertex, work, m_tet_margin_m)
              : brute_force_query_point(world, m_pairs, body, vertex, work);
+}
+
+std::size_t CollisionCycle::memory_bytes() const {
+  std::size_t bytes = m_detector.memory_bytes() + m_surface.memory_bytes() + heap_bytes(m_query_order) +
+                      heap_bytes(m_queries) + heap_bytes(m_surface_bodies) + heap_bytes(m_layer_items) +
+                      heap_bytes(m_layer_mark) + heap_bytes(m_contacts) + heap_bytes(m_lookup) + heap_bytes(m_batch) +
+                      heap_bytes(m_thread_scratch) + heap_bytes(m_surface_scratch);
+  for (const auto& s : m_thread_scratch) bytes += heap_bytes(s.tested);
+  for (const auto& s : m_surface_scratch) bytes += heap_bytes(s.seen);
+  return bytes;
 }
 
 std::size_t CollisionCycle::queries_done() const {

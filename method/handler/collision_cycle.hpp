@@ -209,6 +209,10 @@ class CollisionCycle {
   /// Progress, for schedules and tests: tasks run in this cycle, points
   /// queried, and how many contacts (a prefix of contacts()) have their force.
   std::int64_t tasks_done() const { return m_tasks; }
+  /// Heap bytes of everything the cycle holds: both hashes, boxes, queries,
+  /// contacts and their lookup, batches and every thread's scratch (the
+  /// world's meshes and positions are not the cycle's).
+  std::size_t memory_bytes() const;
   std::size_t queries_done() const;
   std::size_t forces_computed() const;
 

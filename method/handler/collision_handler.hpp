@@ -13,6 +13,7 @@
 /// CycleHandler (cycle_handler.hpp) rather than from this interface.
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "method/handler/budget.hpp"
@@ -73,6 +74,10 @@ class CollisionHandler {
   /// body collides with itself, else 0. The default reads contacts(): some
   /// point of the body inside a tet of the same body.
   virtual std::vector<char> self_collision_verdicts(const World& world) const;
+  /// Heap bytes of the method's own data (hash tables, boxes, contacts,
+  /// scratch; not the world), for run.json's memory per tet; nullopt where a
+  /// method does not count it.
+  virtual std::optional<std::size_t> memory_bytes() const { return std::nullopt; }
 };
 
 }  // namespace tcb

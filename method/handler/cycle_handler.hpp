@@ -22,6 +22,7 @@ class CycleHandler : public CollisionHandler {
   void init(const World& world, const CollisionSettings& settings) override;
   StepReport step(World& world, Budget& budget) final;
   const std::vector<Contact>& contacts() const override;
+  std::optional<std::size_t> memory_bytes() const override { return m_cycle->memory_bytes(); }
   /// The clock the stage costs are read on (tests inject a ticking one);
   /// after init().
   void set_clock(ClockMs clock) { m_cycle->set_clock(std::move(clock)); }

@@ -355,6 +355,14 @@ TEST_CASE("without a budget full handling is the same run on 1 and 2 threads", "
   for (std::size_t i = 1; i < la.size(); ++i) REQUIRE(without_timing(la[0], la[i]) == without_timing(lb[0], lb[i]));
   const auto run = nlohmann::json::parse(read_file(a / "run.json"));
   CHECK(run["summary"]["colliding_points_max"].get<double>() > 100.0);  // the queries found contacts to agree on
+  // The handler's own memory, per tet: more with a second thread's scratch
+  // and part lists, and well below the whole process's.
+  const auto threaded = nlohmann::json::parse(read_file(b / "run.json"));
+  const double one = run["collision_memory"]["bytes_per_tet"].get<double>();
+  CHECK(one > 56.0);  // at least a box, an owner and a stamp per tet
+  CHECK(threaded["collision_memory"]["bytes_per_tet"].get<double>() > one);
+  CHECK(run["collision_memory"]["tets"] == run["peak_memory"]["tets"]);
+  CHECK(one < run["peak_memory"]["bytes_per_tet"].get<double>());
   fs::remove_all(a);
   fs::remove_all(b);
 }

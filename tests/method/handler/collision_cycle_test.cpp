@@ -145,6 +145,28 @@ TEST_CASE("threads change neither contacts, depths nor any task's work, one task
   }
 }
 
+TEST_CASE("the cycle counts its memory: every per-tet array, a scratch more a thread, its contacts",
+          "[cycle][memory]") {
+  const test::TestScene scene = test::collision_scenes()[0].second;
+  World w = build_world(scene);
+  std::size_t tets = 0;
+  for (const Body& b : w.bodies) tets += b.mesh->tet_count();
+  CollisionSettings settings = test::settings_of(w, scene);
+  CollisionCycle one(w, settings);
+  // A box (two Vec3), an owner and a query stamp per tet, and the tet
+  // table's two buckets a tet (three 32-bit words each): a floor.
+  const std::size_t before = one.memory_bytes();
+  CHECK(before >= tets * (2 * sizeof(Vec3) + 4 + 4 + 2 * 12));
+  settings.threads = 3;
+  CollisionCycle three(w, settings);
+  CHECK(three.memory_bytes() >= before + 3 * tets * 4);  // each thread's query stamps
+  one.begin(w);
+  Budget unlimited = Budget::unlimited();
+  REQUIRE(one.advance(w, unlimited));
+  REQUIRE(!one.contacts().empty());
+  CHECK(one.memory_bytes() >= before + one.contacts().size() * sizeof(Contact));
+}
+
 TEST_CASE("under a wall budget a batch is sized to the time left", "[cycle][threads]") {
   CHECK(wall_batch_items(3.0, 0.0, 2, 128) == 8);     // nothing measured: 4 a thread
   CHECK(wall_batch_items(3.0, 0.1, 2, 128) == 30);    // 3 ms at 0.1 ms an item
