@@ -9,8 +9,9 @@
 // occupied cells share a bucket; lower = more hash collisions).
 // BM_Plates20/<hash>/<threads>: the plates20 scene (15,360 tets, at the origin).
 // hash: 0 = mixed (default), 1 = the paper's xor of primes. threads: the
-// cycle's collision.threads (its point queries in parallel; the same contacts
-// on every count, which the counter `colliding` shows).
+// cycle's collision.threads (its tet hashing, point queries and border depths
+// in parallel; the same contacts on every count, which the counter
+// `colliding` shows).
 #include <benchmark/benchmark.h>
 
 #include <cmath>

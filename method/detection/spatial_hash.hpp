@@ -188,11 +188,13 @@ std::size_t SpatialHash::insert_all_and_build(std::size_t n, BoxOf&& box_of, Wor
     throw std::logic_error("SpatialHash::insert_all_and_build needs an empty table");
   const std::size_t parts = static_cast<std::size_t>(pool.threads());
   m_part_entries.resize(parts * parts);
+  // Every list emptied here, not by its part: a part with an empty range
+  // never runs, and must not leave last epoch's entries behind.
+  for (std::vector<Entry>& list : m_part_entries) list.clear();
   std::vector<std::size_t> cells(parts, 0);
   pool.for_ranges(n, [&](int part, std::size_t begin, std::size_t end) {
     const std::size_t p = static_cast<std::size_t>(part);
     std::vector<Entry>* lists = &m_part_entries[p * parts];
-    for (std::size_t q = 0; q < parts; ++q) lists[q].clear();
     Vec3 lo, hi;
     std::uint32_t item = 0;
     for (std::size_t i = begin; i < end; ++i) {

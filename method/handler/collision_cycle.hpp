@@ -62,13 +62,13 @@
 ///
 /// With settings.threads > 1 (spatial hash only) the QueryPoints stage answers
 /// a batch of queries ahead on a WorkerPool (all remaining points without a
-/// budget, 64 a thread under one), then takes the answers one a task in the
+/// budget, 64 a thread under a work budget), then takes the answers one a task in the
 /// serial order with each query's own work: contacts, work units and where a
 /// budget stops are those of one thread. A batch holds for its step only and
 /// is dropped by begin() and by a refresh; the batch's time falls in the task
 /// that starts it, so under wall budgets a task is a batch long, and a batch
 /// is sized to the time left at the recent time per item (at least one item
-/// a thread, at most 64). The paper's
+/// a thread, at most 64 a thread). The paper's
 /// HashTets task (not fine tasks, whose pieces stay serial) also runs on the
 /// pool (TetHashDetector::hash_tets with a pool): the same table, boxes and
 /// work units. The paper's BorderDepth tasks (not fine tasks) are batched the

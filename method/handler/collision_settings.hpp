@@ -39,8 +39,9 @@ struct CollisionDesc {
   /// the bodies (default) or as explicit external forces (the method before).
   ResponseMode response_mode = ResponseMode::Implicit;
   std::vector<CollisionPairDesc> pairs;
-  /// Threads for the cycle's point queries (collision_cycle.hpp); 1 = none
-  /// started. The results are the same for every count.
+  /// Threads for the cycle's tet hashing, point queries and border depths
+  /// (collision_cycle.hpp); 1 = none started. The results are the same for
+  /// every count.
   int threads = 1;
 };
 

@@ -1,8 +1,10 @@
 #pragma once
 /// Bytes a container holds on the heap (its capacity, not its size: what it
 /// occupies), for the handlers' memory accounting (CollisionHandler::
-/// memory_bytes). Containers in this code only grow, so at the end of a run
-/// the figure is their peak. Allocator overhead is not counted.
+/// memory_bytes). The containers a handler keeps between steps only grow
+/// (cleared and refilled, swapped, never moved out or shrunk), so at the end
+/// of a run the figure is their peak. Buffers local to one call and
+/// allocator overhead are not counted.
 
 #include <cstddef>
 #include <vector>

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <iterator>
 
+#include "method/handler/heap_bytes.hpp"
 #include "method/response/penalty_response.hpp"
 
 namespace tcb {
@@ -46,8 +47,11 @@ void InterruptibleHandler::remember_completed_cycle(const std::vector<Contact>& 
   // contact kept for m_keep_lost_cycles more cycles; found with a depth, its
   // count starts again. Work is proportional to the points with a history,
   // never to all vertices.
-  const std::vector<Point> before = std::move(m_history_points);
+  // Swapped, not moved: both lists keep their capacity from cycle to cycle
+  // (no allocation in steady state, and memory_bytes() sees their peak).
+  m_history_points_before.swap(m_history_points);
   m_history_points.clear();
+  const std::vector<Point>& before = m_history_points_before;
   for (const auto& [b, v] : before)
     if (m_keep_lost_cycles == 0 || ++m_lost_cycles[b][v] > m_keep_lost_cycles) m_has_history[b][v] = 0;
   std::vector<Point> found;
@@ -66,6 +70,12 @@ void InterruptibleHandler::remember_completed_cycle(const std::vector<Contact>& 
   }
   std::merge(found.begin(), found.end(), kept.begin(), kept.end(), std::back_inserter(m_history_points));
   m_history_points.erase(std::unique(m_history_points.begin(), m_history_points.end()), m_history_points.end());
+}
+
+std::optional<std::size_t> InterruptibleHandler::memory_bytes() const {
+  return *CycleHandler::memory_bytes() + heap_bytes(m_history) + heap_bytes(m_has_history) +
+         heap_bytes(m_history_points) + heap_bytes(m_history_points_before) + heap_bytes(m_tracked) +
+         heap_bytes(m_lost_cycles) + heap_bytes(m_applied) + heap_bytes(m_completed);
 }
 
 void InterruptibleHandler::init(const World& world, const CollisionSettings& settings) {

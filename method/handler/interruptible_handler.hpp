@@ -90,6 +90,9 @@ class InterruptibleHandler final : public CycleHandler {
   void init(const World& world, const CollisionSettings& settings) override;
   StepReport schedule_step(World& world, Budget& budget) override;
   const std::vector<Contact>& contacts() const override { return m_completed; }
+  /// The cycle's memory and the force histories, tracked contacts and
+  /// per-vertex records this handler keeps between steps.
+  std::optional<std::size_t> memory_bytes() const override;
 
  private:
   /// The stale force of a point (extrapolated, or of its tracked depth) and
@@ -111,6 +114,7 @@ class InterruptibleHandler final : public CycleHandler {
   std::vector<std::vector<ForceHistory>> m_history;   // per body, per vertex
   std::vector<std::vector<char>> m_has_history;
   std::vector<Point> m_history_points;                // the points with has_history, ascending
+  std::vector<Point> m_history_points_before;         // remember_completed_cycle(): the previous list
   std::vector<std::vector<Contact>> m_tracked;        // per body, per vertex (Track only): last depth contact
   std::int64_t m_keep_lost_cycles;
   std::vector<std::vector<std::int64_t>> m_lost_cycles;  // per vertex (kept contacts only): cycles not found since

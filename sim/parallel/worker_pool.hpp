@@ -1,7 +1,7 @@
 #pragma once
 /// A fixed set of threads that run one function over contiguous index ranges
-/// and wait for it: the collision cycle's parallel tet hashing and point
-/// queries (collision.threads). Threads inherit the creating thread's CPU affinity, so
+/// and wait for it: the collision cycle's parallel tet hashing, point
+/// queries and border depths (collision.threads). Threads inherit the creating thread's CPU affinity, so
 /// a pool started on a pinned thread shares its CPU. Plain std::thread, not TBB: the work is one
 /// flat loop split into as many static ranges as threads, with nothing to
 /// steal or nest, and static ranges make it plain which thread did which index

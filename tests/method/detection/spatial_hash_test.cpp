@@ -2,6 +2,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+
 #include <random>
 #include <set>
 
@@ -123,6 +125,36 @@ TEST_CASE("spatial hash: the parallel insert and build make the serial table", "
       }
     }
   }
+}
+
+TEST_CASE("spatial hash: a parallel epoch with fewer boxes than threads keeps nothing of the last", "[hash][threads]") {
+  // Parts whose range is empty never run: their lists of the last epoch
+  // must not reach the new table.
+  WorkerPool pool(3);
+  SpatialHash hash(0.25, 31, HashFunction::Mixed);
+  const auto fill = [&](std::size_t n) {
+    hash.begin_epoch();
+    return hash.insert_all_and_build(
+        n,
+        [&](std::size_t i, Vec3& lo, Vec3& hi, std::uint32_t& item) {
+          lo = Vec3::Constant(0.3 * static_cast<double>(i));
+          hi = lo + Vec3::Constant(0.1);
+          item = static_cast<std::uint32_t>(i);
+          return true;
+        },
+        pool);
+  };
+  REQUIRE(fill(30) > 0);
+  CHECK(fill(1) == 1);
+  CHECK(hash.entry_count() == 1);
+  std::vector<std::uint32_t> met;
+  for (int i = 0; i < 30; ++i) {
+    const Vec3 lo = Vec3::Constant(0.3 * i);
+    hash.for_each_in_box(lo, lo + Vec3::Constant(0.1), [&](std::uint32_t id) { met.push_back(id); });
+  }
+  std::sort(met.begin(), met.end());
+  met.erase(std::unique(met.begin(), met.end()), met.end());
+  CHECK(met == std::vector<std::uint32_t>{0});
 }
 
 TEST_CASE("spatial hash: the parallel insert refuses the first oversized box, as the serial one", "[hash][threads]") {

@@ -28,6 +28,18 @@ Found found(const CollisionCycle& cycle) {
   return out;
 }
 
+// Every field of every contact, in list order.
+bool same_contacts(const std::vector<Contact>& a, const std::vector<Contact>& b) {
+  const auto key = [](const Contact& c) {
+    return std::make_tuple(c.object, c.vertex, c.other, c.tet, c.barycentric, static_cast<int>(c.depth_source), c.layer,
+                           c.detected_step, c.depth_step, c.separated, c.depth_m, c.direction.x(), c.direction.y(),
+                           c.direction.z(), c.depth_offset_m.x(), c.depth_offset_m.y(), c.depth_offset_m.z(),
+                           c.force_n.x(), c.force_n.y(), c.force_n.z());
+  };
+  return std::equal(a.begin(), a.end(), b.begin(), b.end(),
+                    [&](const Contact& x, const Contact& y) { return key(x) == key(y); });
+}
+
 struct SingleTasks {
   Found found;
   int calls = 0;
@@ -84,14 +96,16 @@ TEST_CASE("fine tasks find exactly the paper's contacts and depths, and brute fo
 TEST_CASE("threads change neither contacts, depths nor any task's work, one task a call or all at once",
           "[cycle][threads]") {
   // With collision.threads > 1 the queries and the paper's border depths are
-  // computed ahead in batches (64 a thread under a budget, everything
-  // without one) and taken one a task: every task's work and stage, and
-  // every contact field, must be one thread's.
+  // computed ahead in batches (64 a thread under a work budget, sized by the
+  // time left under a wall budget, everything without one) and taken one a
+  // task: every task's work and stage, and every field of every contact in
+  // list order, must be one thread's.
   for (const auto& [name, scene] : test::collision_scenes()) {
     INFO(name);
     using Trace = std::vector<std::pair<int, std::uint64_t>>;  // per task: stage, work
     Trace serial_trace;
     Found serial_single, serial_whole;
+    std::vector<Contact> serial_contacts;
     for (const int threads : {1, 2, 3}) {
       INFO("threads " << threads);
       World w = build_world(scene);  // never stepped: every contact is detected at this step's positions
@@ -112,6 +126,7 @@ TEST_CASE("threads change neither contacts, depths nor any task's work, one task
       Budget unlimited = Budget::unlimited();
       REQUIRE(whole.advance(w, unlimited));
       if (threads == 1) {
+        serial_contacts = cycle.contacts();
         serial_trace = trace;
         serial_single = found(cycle);
         serial_whole = found(whole);
@@ -122,6 +137,7 @@ TEST_CASE("threads change neither contacts, depths nor any task's work, one task
               }) > 0);  // border depths were computed, so their batches were used
       } else {
         CHECK(trace == serial_trace);
+        CHECK(same_contacts(cycle.contacts(), serial_contacts));
         CHECK(found(cycle) == serial_single);
         CHECK(found(whole) == serial_whole);
         // Under a wall budget (a clock ticking 1 ms a reading, 5 ms a call)
@@ -142,6 +158,51 @@ TEST_CASE("threads change neither contacts, depths nor any task's work, one task
         CHECK(found(timed) == serial_single);
       }
     }
+  }
+}
+
+TEST_CASE("threads change nothing when a cycle spans moving steps and re-detects its points", "[cycle][threads]") {
+  // A small work budget a step, and the last body moved a little after
+  // every step: cycles span steps, so BorderDepth re-detects points detected
+  // in earlier steps (some move out) and must run them serially. Every
+  // call's work and stage, and every contact field, must be one thread's.
+  for (const auto& [name, scene] : test::collision_scenes()) {
+    INFO(name);
+    using Trace = std::vector<std::tuple<int, std::uint64_t, int>>;  // per call: stage after, work, done
+    Trace serial_trace;
+    std::vector<Contact> serial_contacts;
+    bool redetected = false;
+    for (const int threads : {1, 2, 3}) {
+      INFO("threads " << threads);
+      World w = build_world(scene);
+      CollisionSettings settings = test::settings_of(w, scene);
+      settings.threads = threads;
+      CollisionCycle cycle(w, settings);
+      Trace trace;
+      for (int cycles = 0; cycles < 3; ++cycles) {
+        cycle.begin(w);
+        std::int64_t queried_at = -1;  // the step this cycle's queries ended in
+        for (bool done = false; !done;) {
+          Budget budget = Budget::work_units(400);
+          done = cycle.advance(w, budget);
+          trace.emplace_back(static_cast<int>(cycle.stage()), budget.spent(), done);
+          if (queried_at < 0 && (done || cycle.stage() > CollisionCycle::Stage::QueryPoints)) queried_at = w.step_index;
+          if (done && threads == 1)
+            for (const Contact& c : cycle.contacts()) redetected |= c.detected_step > queried_at || c.separated;
+          for (Vec3& x : w.bodies.back().x_m) x += Vec3(0.0005, -0.0003, 0.0002);
+          ++w.step_index;
+          REQUIRE(trace.size() < 1000000);
+        }
+      }
+      if (threads == 1) {
+        serial_trace = trace;
+        serial_contacts = cycle.contacts();
+      } else {
+        CHECK(trace == serial_trace);
+        CHECK(same_contacts(cycle.contacts(), serial_contacts));
+      }
+    }
+    CHECK(redetected);  // the serial path after a re-detection really ran
   }
 }
 

@@ -314,3 +314,19 @@ TEST_CASE("reserve_apply stops the cycle early by the time applying took in the 
   CHECK(without[1] > without[0]);  // the cycle spans the steps
   CHECK(tasks_under_work(true) == without);
 }
+
+TEST_CASE("interruptible counts its force histories in its memory, beside the cycle's", "[interruptible][memory]") {
+  const test::TestScene scene = test::collision_scenes()[0].second;
+  World world = build_world(scene);
+  std::size_t vertices = 0;
+  for (const Body& b : world.bodies) vertices += b.x_m.size();
+  for (const auto stale : {InterruptibleHandler::Stale::Extrapolate, InterruptibleHandler::Stale::Track}) {
+    InterruptibleHandler handler(stale);
+    handler.init(world, test::settings_of(world, scene));
+    // A force history and a "last applied" step per vertex; Track keeps a
+    // contact per vertex as well.
+    const std::size_t own = vertices * (sizeof(ForceHistory) + sizeof(std::int64_t)) +
+                            (stale == InterruptibleHandler::Stale::Track ? vertices * sizeof(Contact) : 0);
+    CHECK(*handler.memory_bytes() >= handler.cycle().memory_bytes() + own);
+  }
+}
