@@ -502,7 +502,12 @@ std::size_t wall_batch_items(double left_ms, double item_ms, std::size_t threads
   return std::clamp(static_cast<std::size_t>(std::min(fits, static_cast<double>(most))), std::min(threads, most), most);
 }
 
-void CollisionCycle::run_batch(std::size_t size, const Budget& budget, const WorkerPool::RangeFunction& f) {
+void CollisionCycle::run_batch(std::size_t remaining, const World& world, const Budget& budget,
+                               const WorkerPool::RangeFunction& f) {
+  const std::size_t size = batch_size(remaining, budget);
+  m_batch.assign(size, Answer{});
+  m_batch_begin = m_cursor;
+  m_batch_step = world.step_index;
   const bool timed = budget.kind() == BudgetKind::WallMs;
   const double start_ms = timed ? m_clock() : 0.0;
   m_pool->for_ranges(size, f);
@@ -528,11 +533,7 @@ bool CollisionCycle::depth_batch_allowed(const World& world) {
 }
 
 void CollisionCycle::depth_batch(const World& world, const Budget& budget) {
-  const std::size_t size = batch_size(m_contacts.size() - m_cursor, budget);
-  m_batch.assign(size, Answer{});
-  m_batch_begin = m_cursor;
-  m_batch_step = world.step_index;
-  run_batch(size, budget, [&](int part, std::size_t begin, std::size_t end) {
+  run_batch(m_contacts.size() - m_cursor, world, budget, [&](int part, std::size_t begin, std::size_t end) {
     SurfaceHash::QueryScratch& scratch = m_surface_scratch[static_cast<std::size_t>(part)];
     for (std::size_t i = begin; i < end; ++i) {
       Contact c = m_contacts[m_batch_begin + i];
@@ -544,11 +545,7 @@ void CollisionCycle::depth_batch(const World& world, const Budget& budget) {
 }
 
 void CollisionCycle::query_batch(const World& world, const Budget& budget) {
-  const std::size_t size = batch_size(m_queries.size() - m_cursor, budget);
-  m_batch.assign(size, Answer{});
-  m_batch_begin = m_cursor;
-  m_batch_step = world.step_index;
-  run_batch(size, budget, [&](int part, std::size_t begin, std::size_t end) {
+  run_batch(m_queries.size() - m_cursor, world, budget, [&](int part, std::size_t begin, std::size_t end) {
     TetHashDetector::QueryScratch& scratch = m_thread_scratch[static_cast<std::size_t>(part)];
     for (std::size_t i = begin; i < end; ++i) {
       const std::size_t at = m_batch_begin + i;

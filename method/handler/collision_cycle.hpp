@@ -232,9 +232,10 @@ class CollisionCycle {
   bool batch_holds(const World& world) const;
   void query_batch(const World& world, const Budget& budget);
   std::size_t batch_size(std::size_t remaining, const Budget& budget) const;
-  /// The pool's for_ranges over a batch; under a wall budget, also notes
+  /// Starts a batch at the cursor (its size from batch_size(), for this
+  /// step) and runs f over it on the pool; under a wall budget, also notes
   /// what an item took (m_batch_item_ms).
-  void run_batch(std::size_t size, const Budget& budget, const WorkerPool::RangeFunction& f);
+  void run_batch(std::size_t remaining, const World& world, const Budget& budget, const WorkerPool::RangeFunction& f);
   bool depth_batch_allowed(const World& world);
   void depth_batch(const World& world, const Budget& budget);
 
