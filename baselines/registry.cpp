@@ -26,6 +26,14 @@ const SettingSpec kReserveApply{.name = "reserve_apply",
                                                "the forces took in recent steps, so the step ends within the budget "
                                                "(ours, not the paper's)"};
 
+const SettingSpec kApplyFirst{.name = "apply_first",
+                              .type = SettingSpec::Type::Boolean,
+                              .default_value = false,
+                              .description = "apply the forces at the start of each step, from the cycle as the last "
+                                             "step left it, and give the cycle the rest of the budget: a wall-clock "
+                                             "budget then sees the applying, and a depth acts one step later (ours, "
+                                             "not the paper's)"};
+
 const SettingSpec kWidenStale{.name = "widen_stale",
                               .type = SettingSpec::Type::Boolean,
                               .default_value = false,
@@ -53,7 +61,8 @@ InterruptibleHandler::Options interruptible_options(const MethodSettings& s, std
                        .widen_stale = s.boolean("widen_stale"),
                        .rehash_stale = s.boolean("rehash_stale"),
                        .predict_tasks = s.boolean("predict_tasks")},
-          .reserve_apply = s.boolean("reserve_apply")};
+          .reserve_apply = s.boolean("reserve_apply"),
+          .apply_first = s.boolean("apply_first")};
 }
 
 }  // namespace
@@ -64,7 +73,7 @@ const std::vector<MethodInfo>& method_registry() {
       {.name = "interruptible",
        .description = "the paper's method: the cycle under a time budget, resumed next step, forces extrapolated "
                       "meanwhile",
-       .settings = {kFineTasks, kReserveApply, kWidenStale, kRehashStale, kPredictTasks},
+       .settings = {kFineTasks, kReserveApply, kApplyFirst, kWidenStale, kRehashStale, kPredictTasks},
        .make =
            [](const MethodSettings& s) {
              return std::make_unique<InterruptibleHandler>(Stale::Extrapolate, interruptible_options(s));
@@ -72,7 +81,7 @@ const std::vector<MethodInfo>& method_registry() {
        .uses_budget = true},
       {.name = "interruptible_no_extrapolation",
        .description = "ablation: interruptible without force extrapolation",
-       .settings = {kFineTasks, kReserveApply, kWidenStale, kRehashStale, kPredictTasks},
+       .settings = {kFineTasks, kReserveApply, kApplyFirst, kWidenStale, kRehashStale, kPredictTasks},
        .make =
            [](const MethodSettings& s) {
              return std::make_unique<InterruptibleHandler>(Stale::Nothing, interruptible_options(s));
@@ -92,6 +101,7 @@ const std::vector<MethodInfo>& method_registry() {
                                     "the paper's history"},
                     kFineTasks,
                     kReserveApply,
+                    kApplyFirst,
                     kWidenStale, kRehashStale, kPredictTasks},
        .make =
            [](const MethodSettings& s) {
@@ -102,7 +112,7 @@ const std::vector<MethodInfo>& method_registry() {
       {.name = "interruptible_prioritized",
        .description = "variant (not in the paper; its future work): interruptible, but each cycle queries the "
                       "fastest points first, so they get their depth and force first",
-       .settings = {kFineTasks, kReserveApply, kWidenStale, kRehashStale, kPredictTasks},
+       .settings = {kFineTasks, kReserveApply, kApplyFirst, kWidenStale, kRehashStale, kPredictTasks},
        .make =
            [](const MethodSettings& s) {
              InterruptibleHandler::Options options = interruptible_options(s);

@@ -12,7 +12,8 @@ InterruptibleHandler::InterruptibleHandler(Stale stale, Options options)
     : CycleHandler(DetectionMode::SpatialHash, options.schedule),
       m_stale(stale),
       m_keep_lost_cycles(stale == Stale::Track ? options.keep_lost_cycles : 0),
-      m_reserve_apply(options.reserve_apply) {}
+      m_reserve_apply(options.reserve_apply),
+      m_apply_first(options.apply_first) {}
 
 std::optional<InterruptibleHandler::StaleForce> InterruptibleHandler::stale_force(const World& world,
                                                                                   std::int32_t object,
@@ -40,7 +41,7 @@ void InterruptibleHandler::apply_stale(World& world, const StaleForce& f) const 
   else add_force_link(world, f.where, f.force_n, cycle().settings().response(f.where.object, f.where.other));
 }
 
-void InterruptibleHandler::remember_completed_cycle(const std::vector<Contact>& contacts,
+void InterruptibleHandler::remember_completed_cycle(const std::vector<Contact>& contacts, std::int64_t step,
                                                     std::int64_t cycle_steps) {
   // The history becomes this cycle's depth-based forces. A point it did not
   // find (or found without a depth) loses its history, unless it is a tracked
@@ -57,7 +58,7 @@ void InterruptibleHandler::remember_completed_cycle(const std::vector<Contact>& 
   std::vector<Point> found;
   for (const Contact& c : contacts) {
     if (c.depth_source == DepthSource::None) continue;
-    record_depth_force(m_history[c.object][c.vertex], c, m_step, cycle_steps);
+    record_depth_force(m_history[c.object][c.vertex], c, step, cycle_steps);
     m_has_history[c.object][c.vertex] = 1;
     if (m_keep_lost_cycles > 0) m_lost_cycles[c.object][c.vertex] = 0;
     found.emplace_back(c.object, c.vertex);
@@ -91,9 +92,23 @@ void InterruptibleHandler::init(const World& world, const CollisionSettings& set
 
 StepReport InterruptibleHandler::schedule_step(World& world, Budget& budget) {
   ++m_step;
-  const bool reserve = m_reserve_apply && budget.kind() == BudgetKind::WallMs;
-  // We do not know yet whether this step completes the cycle (its bookkeeping
-  // costs more): reserve for the dearer of the two.
+  StepReport report;
+  if (m_apply_first) {
+    // The forces of the cycle as the last step left it (the completed
+    // cycle's alone if it completed), before this step's first poll: the
+    // budget sees applying, and a depth found in this step acts from the next.
+    if (m_cycle_start > 0) apply_forces(world, report, !m_in_progress);
+  }
+  if (m_remember_pending) {
+    // The last step completed a cycle: its forces become the history now,
+    // before this step's first poll, where the budget sees the time. Nothing
+    // read the history in between, so no result depends on when.
+    remember_completed_cycle(cycle().contacts(), m_step - 1, m_remember_cycle_steps);
+    m_remember_pending = false;
+  }
+  const bool reserve = m_reserve_apply && !m_apply_first && budget.kind() == BudgetKind::WallMs;
+  // We do not know yet whether this step completes the cycle: reserve for the
+  // dearer of the two kinds of step.
   if (reserve) budget.reserve_ms(std::min(std::max(m_apply_ms_done, m_apply_ms_running), 0.5 * budget.limit()));
   if (!m_in_progress) {
     mutable_cycle().begin(world);
@@ -103,11 +118,30 @@ StepReport InterruptibleHandler::schedule_step(World& world, Budget& budget) {
   const std::uint64_t before = budget.spent();
   const bool done = mutable_cycle().advance(world, budget);
   const double cycle_end_ms = reserve ? budget.elapsed_ms() : 0.0;
-  StepReport report;
   report.work_units = budget.spent() - before;
   report.cycle = cycle().number();
   report.cycle_done = done;
+  if (!m_apply_first) apply_forces(world, report, done);
+  if (done) {
+    m_remember_pending = true;
+    m_remember_cycle_steps = m_step - m_cycle_start + 1;
+    m_completed.clear();
+    for (const Contact& c : cycle().contacts())
+      if (!c.separated) m_completed.push_back(c);
+    m_in_progress = false;
+  }
+  if (reserve) {
+    // What applying took, remembered per kind of step; an old figure fades
+    // (x0.9 a step of its kind) so one slow step does not shrink the cycle for good.
+    double& recent = done ? m_apply_ms_done : m_apply_ms_running;
+    recent = std::max(budget.elapsed_ms() - cycle_end_ms, 0.9 * recent);
+  }
+  report.colliding_points = static_cast<std::int64_t>(m_completed.size());
+  report.depth_fallback = done ? cycle().depth_fallback() : 0;
+  return report;
+}
 
+void InterruptibleHandler::apply_forces(World& world, StepReport& report, bool cycle_complete) {
   const auto& contacts = cycle().contacts();
   const std::size_t with_force = cycle().forces_computed();
   for (std::size_t i = 0; i < contacts.size(); ++i) {
@@ -135,7 +169,7 @@ StepReport InterruptibleHandler::schedule_step(World& world, Budget& budget) {
       }
       ++report.exact_forces;
       report.exact_points.emplace_back(c.object, c.vertex);
-    } else if (!done) {
+    } else if (!cycle_complete) {
       if (const auto f = stale_force(world, c.object, c.vertex)) {
         apply_stale(world, *f);
         ++report.estimated_forces;
@@ -143,7 +177,7 @@ StepReport InterruptibleHandler::schedule_step(World& world, Budget& budget) {
       }
     }
   }
-  if (!done && m_stale != Stale::Nothing) {
+  if (!cycle_complete && m_stale != Stale::Nothing) {
     // Points in contact in earlier cycles that this cycle has not reached yet
     // (in ascending (body, vertex) order).
     for (const auto& [object, vertex] : m_history_points) {
@@ -155,22 +189,6 @@ StepReport InterruptibleHandler::schedule_step(World& world, Budget& budget) {
       }
     }
   }
-  if (done) {
-    remember_completed_cycle(contacts, m_step - m_cycle_start + 1);
-    m_completed.clear();
-    for (const Contact& c : contacts)
-      if (!c.separated) m_completed.push_back(c);
-    m_in_progress = false;
-  }
-  if (reserve) {
-    // What applying took, remembered per kind of step; an old figure fades
-    // (x0.9 a step of its kind) so one slow step does not shrink the cycle for good.
-    double& recent = done ? m_apply_ms_done : m_apply_ms_running;
-    recent = std::max(budget.elapsed_ms() - cycle_end_ms, 0.9 * recent);
-  }
-  report.colliding_points = static_cast<std::int64_t>(m_completed.size());
-  report.depth_fallback = done ? cycle().depth_fallback() : 0;
-  return report;
 }
 
 }  // namespace tcb

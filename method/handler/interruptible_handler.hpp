@@ -3,8 +3,8 @@
 /// handling. `interruptible`, the ablation `interruptible_no_extrapolation`,
 /// and our variants `interruptible_tracked` (below) and
 /// `interruptible_prioritized` (fastest points first, collision_cycle.hpp).
-/// The settings fine_tasks, reserve_apply, widen_stale, rehash_stale and
-/// predict_tasks (InterruptibleOptions) are ours
+/// The settings fine_tasks, reserve_apply, apply_first, widen_stale,
+/// rehash_stale and predict_tasks (InterruptibleOptions) are ours
 /// too; by default every one of them keeps the paper's schedule.
 ///
 /// Every step works on the current collision cycle until the step's budget
@@ -79,6 +79,14 @@ struct InterruptibleOptions {
   /// after the last interruption point. Capped at half the budget, so the
   /// cycle still advances.
   bool reserve_apply = false;
+  /// Apply the forces at the start of each step, from the cycle as the last
+  /// step left it, and give the cycle what is left of the budget (ours, the
+  /// setting apply_first). The paper applies after the cycle's last
+  /// interruption point, where no wall budget sees it; here the last task is
+  /// all a step can overrun by. The price: a depth found in a step acts from
+  /// the next one (one step more latency), and a completed cycle's forces act
+  /// in the step after it completed. reserve_apply has nothing left to do.
+  bool apply_first = false;
 };
 
 class InterruptibleHandler final : public CycleHandler {
@@ -105,7 +113,11 @@ class InterruptibleHandler final : public CycleHandler {
   std::optional<StaleForce> stale_force(const World& world, std::int32_t object, std::int32_t vertex);
   void apply_stale(World& world, const StaleForce& force) const;
   ForceSource stale_source() const { return m_stale == Stale::Track ? ForceSource::Tracked : ForceSource::Extrapolated; }
-  void remember_completed_cycle(const std::vector<Contact>& contacts, std::int64_t cycle_steps);
+  /// The history after a cycle that completed at `step` in `cycle_steps` steps.
+  void remember_completed_cycle(const std::vector<Contact>& contacts, std::int64_t step, std::int64_t cycle_steps);
+  /// The forces of the cycle's current state, per the rules above: of its
+  /// contacts, and while it is incomplete, extrapolated (or tracked) ones.
+  void apply_forces(World& world, StepReport& report, bool cycle_complete);
   using Point = std::pair<std::int32_t, std::int32_t>;  // (body, vertex)
 
   Stale m_stale;
@@ -120,7 +132,10 @@ class InterruptibleHandler final : public CycleHandler {
   std::vector<std::vector<std::int64_t>> m_lost_cycles;  // per vertex (kept contacts only): cycles not found since
   std::vector<std::vector<std::int64_t>> m_applied;   // per vertex: last step a force was decided for it
   std::vector<Contact> m_completed;
+  bool m_remember_pending = false;          // a cycle completed last step: its history is still to be recorded
+  std::int64_t m_remember_cycle_steps = 1;  // that cycle's length in steps
   bool m_reserve_apply;
+  bool m_apply_first;
   double m_apply_ms_done = 0.0, m_apply_ms_running = 0.0;  // recent apply times (reserve_apply), per step kind
 };
 

@@ -4,6 +4,7 @@
 #include "method/handler/interruptible_handler.hpp"
 
 #include <catch2/catch.hpp>
+#include <map>
 
 #include "baselines/registry.hpp"
 #include "tests/method/test_worlds.hpp"
@@ -313,6 +314,202 @@ TEST_CASE("reserve_apply stops the cycle early by the time applying took in the 
   const auto without = tasks_under_work(false);
   CHECK(without[1] > without[0]);  // the cycle spans the steps
   CHECK(tasks_under_work(true) == without);
+}
+
+namespace {
+
+// The forces one handler step leaves on a world: every body's contact forces
+// and the links, as plain numbers.
+struct AppliedForces {
+  std::vector<std::vector<Vec3>> contact_force_n;
+  std::vector<ContactLink> links;
+  std::int64_t exact = 0, estimated = 0;
+};
+
+AppliedForces take_forces(World& world, const StepReport& r) {
+  AppliedForces f;
+  for (Body& b : world.bodies) {
+    f.contact_force_n.push_back(b.contact_force_n);
+    std::fill(b.contact_force_n.begin(), b.contact_force_n.end(), Vec3::Zero());
+  }
+  f.links.swap(world.contact_links);
+  f.exact = r.exact_forces;
+  f.estimated = r.estimated_forces;
+  return f;
+}
+
+bool same_forces(const AppliedForces& a, const AppliedForces& b) {
+  if (a.contact_force_n != b.contact_force_n || a.links.size() != b.links.size() || a.exact != b.exact ||
+      a.estimated != b.estimated)
+    return false;
+  for (std::size_t i = 0; i < a.links.size(); ++i) {
+    const ContactLink &x = a.links[i], &y = b.links[i];
+    if (x.point_body != y.point_body || x.vertex != y.vertex || x.tet_body != y.tet_body ||
+        x.tet_vertices != y.tet_vertices || x.weights != y.weights || x.normal != y.normal || x.depth_m != y.depth_m ||
+        x.stiffness_n_per_m != y.stiffness_n_per_m || x.damping_n_s_per_m != y.damping_n_s_per_m)
+      return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+TEST_CASE("apply_first applies in step k+1 what the paper's order applies in step k, on a world at rest",
+          "[interruptible][apply_first]") {
+  // The world is not stepped, so positions and velocities are the same in
+  // every step and only the order differs: apply_first applies the cycle as
+  // the last step left it, the paper's order as this step leaves it. Without
+  // extrapolation (which extrapolates to the step the force acts in) the
+  // forces must then be the same, one step apart, bit for bit; across several
+  // cycles, with steps that complete one.
+  for (const ResponseMode mode : {ResponseMode::Explicit, ResponseMode::Implicit})
+  for (const char* name : {"interruptible_no_extrapolation", "interruptible_tracked"}) {
+    INFO(name << (mode == ResponseMode::Implicit ? " implicit" : " explicit"));
+    test::TestScene scene = pressed_blocks();
+    scene.collision.response_mode = mode;
+    scene.collision.damping_n_s_per_m = 2.0;
+    // A quarter of a whole cycle's work a step: a cycle spans about 4 steps.
+    std::uint64_t cycle_work = 0;
+    {
+      World world = build_world(scene.world);
+      auto full = make_handler("full");
+      full->init(world, test::settings_of(world, scene));
+      Budget unlimited = Budget::unlimited();
+      cycle_work = full->step(world, unlimited).work_units;
+    }
+    const auto run = [&](bool apply_first) {
+      World world = build_world(scene.world);
+      MethodSettings settings(find_method(name).settings);
+      settings.set("apply_first", apply_first);
+      auto handler = make_handler(name, &settings);
+      handler->init(world, test::settings_of(world, scene));
+      std::vector<AppliedForces> steps;
+      std::int64_t cycles_done = 0;
+      for (int s = 0; s < 60; ++s) {
+        Budget b = Budget::work_units(cycle_work / 4);
+        const StepReport r = handler->step(world, b);
+        cycles_done += r.cycle_done;
+        steps.push_back(take_forces(world, r));
+      }
+      return std::pair{steps, cycles_done};
+    };
+    const auto [paper, paper_cycles] = run(false);
+    const auto [first, first_cycles] = run(true);
+    CHECK(paper_cycles >= 8);  // several cycles, each over several steps
+    CHECK(first_cycles == paper_cycles);
+    CHECK(first[0].exact + first[0].estimated == 0);  // nothing known before the first cycle
+    std::int64_t forces = 0;
+    for (std::size_t k = 0; k + 1 < paper.size(); ++k) {
+      INFO("step " << k);
+      REQUIRE(same_forces(first[k + 1], paper[k]));
+      forces += paper[k].exact;
+    }
+    CHECK(forces > 0);
+  }
+}
+
+TEST_CASE("apply_first applies before the step's first poll; the paper's order after its last",
+          "[interruptible][apply_first]") {
+  // The clock notes how many points had a contact force when it was read: the
+  // budget reads it at creation and at every poll.
+  const test::TestScene scene = pressed_blocks();
+  // A budget of a quarter of a whole cycle's tasks (the clock ticks 1 ms a
+  // reading, a reading a task): a cycle spans about 4 steps.
+  std::int64_t cycle_tasks = 0;
+  {
+    World world = build_world(scene.world);
+    InterruptibleHandler handler(InterruptibleHandler::Stale::Extrapolate);
+    handler.init(world, test::settings_of(world, scene));
+    Budget unlimited = Budget::unlimited();
+    REQUIRE(handler.step(world, unlimited).cycle_done);
+    cycle_tasks = handler.cycle().tasks_done();
+  }
+  for (const bool apply_first : {false, true}) {
+    INFO((apply_first ? "apply_first" : "the paper's order"));
+    World world = build_world(scene.world);
+    MethodSettings settings(find_method("interruptible").settings);
+    settings.set("apply_first", apply_first);
+    auto handler = make_handler("interruptible", &settings);
+    handler->init(world, test::settings_of(world, scene));
+    double now = 0.0;
+    std::vector<std::size_t> pushed_at_reads;
+    const ClockMs clock = [&] {
+      std::size_t pushed = world.contact_links.size();
+      for (const Body& b : world.bodies)
+        for (const Vec3& f : b.contact_force_n) pushed += f != Vec3::Zero();
+      pushed_at_reads.push_back(pushed);
+      return now += 1.0;
+    };
+    std::int64_t steps_with_forces = 0, polls_after_forces = 0;
+    for (int s = 0; s < 40; ++s) {
+      pushed_at_reads.clear();
+      Budget b = Budget::wall_ms(static_cast<double>(cycle_tasks / 4), clock);
+      const StepReport r = handler->step(world, b);
+      // The creation, then a poll after every task but one that completes
+      // the cycle.
+      REQUIRE_FALSE(pushed_at_reads.empty());
+      CHECK(pushed_at_reads.front() == 0);
+      const bool applied = r.exact_forces + r.estimated_forces > 0;
+      steps_with_forces += applied;
+      // Every poll of the step saw the step's forces already applied, or none.
+      for (std::size_t i = 1; i < pushed_at_reads.size(); ++i) {
+        CHECK((pushed_at_reads[i] > 0) == (apply_first && applied));
+        polls_after_forces += pushed_at_reads[i] > 0;
+      }
+      world.step(scene.world.dt_s);
+    }
+    CHECK(steps_with_forces > 10);
+    CHECK((polls_after_forces > 10) == apply_first);
+  }
+}
+
+TEST_CASE("extrapolation continues from the step a cycle completed in, though its history is recorded a step later",
+          "[interruptible]") {
+  // Cycles complete in steps 1 and 2 (the cube pressed 1 mm deeper for the
+  // second), so a point in both has f1 = B (step 2), f2 = A, n = 1; step 3
+  // runs no depth (budget 0) and extrapolates B + (3 - 2) (B - A). Under
+  // implicit response that force is a link whose depth is its normal part
+  // over the stiffness.
+  test::TestScene scene = pressed_blocks();
+  scene.collision.response_mode = ResponseMode::Implicit;
+  World world = build_world(scene.world);
+  InterruptibleHandler handler(InterruptibleHandler::Stale::Extrapolate);
+  handler.init(world, test::settings_of(world, scene));
+  const auto clear = [&] {
+    for (auto& b : world.bodies) std::fill(b.contact_force_n.begin(), b.contact_force_n.end(), Vec3::Zero());
+    world.contact_links.clear();
+  };
+  const auto forces_of_cycle = [&] {
+    std::map<std::pair<std::int32_t, std::int32_t>, Vec3> f;
+    for (const Contact& c : handler.contacts())
+      if (c.depth_source != DepthSource::None) f[{c.object, c.vertex}] = c.force_n;
+    return f;
+  };
+  Budget all = Budget::unlimited();
+  REQUIRE(handler.step(world, all).cycle_done);
+  const auto a = forces_of_cycle();
+  clear();
+  for (Vec3& x : world.bodies[1].x_m) x.y() -= 0.001;
+  Budget all_again = Budget::unlimited();
+  REQUIRE(handler.step(world, all_again).cycle_done);
+  const auto b = forces_of_cycle();
+  clear();
+  Budget zero = Budget::work_units(0);
+  const StepReport r = handler.step(world, zero);
+  REQUIRE_FALSE(r.cycle_done);
+  REQUIRE(r.estimated_forces > 0);
+  const double k = scene.collision.response_stiffness_n_per_m;
+  std::size_t checked = 0, moved = 0;
+  for (const ContactLink& link : world.contact_links) {
+    const auto in_a = a.find({link.point_body, link.vertex}), in_b = b.find({link.point_body, link.vertex});
+    if (in_a == a.end() || in_b == b.end()) continue;
+    const Vec3 f = 2.0 * in_b->second - in_a->second;
+    CHECK(link.depth_m * k == Approx(f.dot(link.normal)).epsilon(1e-12));
+    moved += (in_b->second - in_a->second).norm() > 1e-3 * in_b->second.norm();
+    ++checked;
+  }
+  CHECK(checked > 0);
+  CHECK(moved > 0);  // A and B differ: the check tells the step apart
 }
 
 TEST_CASE("interruptible counts its force histories in its memory, beside the cycle's", "[interruptible][memory]") {
