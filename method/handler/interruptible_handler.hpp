@@ -21,7 +21,13 @@
 ///     -- counted in estimated_forces; the ablation applies nothing here;
 ///   - otherwise (a newly colliding point): nothing until its depth is known.
 /// When a cycle completes, its depth-based forces enter the history and points
-/// it no longer finds are forgotten.
+/// it no longer finds are forgotten: recorded at the start of the next step,
+/// before its first poll (a wall budget sees the time), with the step the
+/// cycle completed in (extrapolation counts from there).
+///
+/// The setting apply_first (ours) applies these forces at the start of the
+/// step instead, from the cycle as the previous step left it, so applying
+/// lies before the first poll too; a depth then acts one step later.
 ///
 /// `interruptible_tracked` (a variant, not in the paper) tracks depths instead
 /// of extrapolating forces. Every depth keeps the offset r0 = x_point -
