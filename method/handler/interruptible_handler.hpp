@@ -25,9 +25,10 @@
 /// before its first poll (a wall budget sees the time), with the step the
 /// cycle completed in (extrapolation counts from there).
 ///
-/// The setting apply_first (ours) applies these forces at the start of the
-/// step instead, from the cycle as the previous step left it, so applying
-/// lies before the first poll too; a depth then acts one step later.
+/// The setting apply_first (ours) applies the step's forces (the rules
+/// above) at its start instead, from the cycle as the previous step left it,
+/// so applying lies before the first poll too; a depth then acts one step
+/// later, and a completed cycle's contacts act alone in the step after it.
 ///
 /// `interruptible_tracked` (a variant, not in the paper) tracks depths instead
 /// of extrapolating forces. Every depth keeps the offset r0 = x_point -
@@ -51,7 +52,8 @@
 /// chattering stack (0: settled kinetic energy 0.59 J) and a resting one (1:
 /// 0.016 J, full's 0.013 J). Its risk: a point that slid out sideways keeps a
 /// force while its tracked depth is > 0, for at most that many cycles. In the
-/// step a cycle completes, only that cycle's contacts act (as in `full`).
+/// step a cycle completes, only that cycle's contacts act (as in `full`;
+/// under apply_first, in the step after).
 ///
 /// Under implicit response (collision_settings.hpp) every force above is a
 /// link solved with the bodies: depth-based ones with their depth, an
@@ -88,8 +90,9 @@ struct InterruptibleOptions {
   /// Apply the forces at the start of each step, from the cycle as the last
   /// step left it, and give the cycle what is left of the budget (ours, the
   /// setting apply_first). The paper applies after the cycle's last
-  /// interruption point, where no wall budget sees it; here the last task is
-  /// all a step can overrun by. The price: a depth found in a step acts from
+  /// interruption point, where no wall budget sees it; here a step overruns
+  /// by its last task (and, when it completes a cycle, the copy of its
+  /// contacts that contacts() returns). The price: a depth found in a step acts from
   /// the next one (one step more latency), and a completed cycle's forces act
   /// in the step after it completed. reserve_apply has nothing left to do.
   bool apply_first = false;

@@ -137,7 +137,7 @@ class EveryNthInferior(unittest.TestCase):
         o = row([r for r in setup_runs() if not r.name.startswith("i2")] + [fine])
         self.assertEqual(o.verdict, UNMEASURED)
         self.assertIn("no interruptible run (paper's settings)", o.measured)
-        for settings in ({"reserve_apply": True}, {"widen_stale": True}):
+        for settings in ({"reserve_apply": True}, {"apply_first": True}, {"widen_stale": True}):
             other = run("ours", budget="full-work/2", settings=settings, fe=force(0.5), div=diverged(1e-3))
             o = row([r for r in setup_runs() if not r.name.startswith("i2")] + [other])
             self.assertEqual(o.verdict, UNMEASURED, settings)
