@@ -93,12 +93,11 @@ void InterruptibleHandler::init(const World& world, const CollisionSettings& set
 StepReport InterruptibleHandler::schedule_step(World& world, Budget& budget) {
   ++m_step;
   StepReport report;
-  if (m_apply_first) {
-    // The forces of the cycle as the last step left it (the completed
-    // cycle's alone if it completed), before this step's first poll: the
-    // budget sees applying, and a depth found in this step acts from the next.
-    if (m_cycle_start > 0) apply_forces(world, report, !m_in_progress);
-  }
+  // apply_first: the forces of the cycle as the last step left it (the
+  // completed cycle's alone if it completed; none before the first cycle),
+  // before this step's first poll: the budget sees applying, and a depth found
+  // in this step acts from the next.
+  if (m_apply_first && m_cycle_start > 0) apply_forces(world, report, !m_in_progress);
   if (m_remember_pending) {
     // The last step completed a cycle: its forces become the history now,
     // before this step's first poll, where the budget sees the time. Nothing

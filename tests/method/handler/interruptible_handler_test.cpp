@@ -5,6 +5,7 @@
 
 #include <catch2/catch.hpp>
 #include <map>
+#include <memory>
 #include <string>
 
 #include "baselines/registry.hpp"
@@ -31,20 +32,46 @@ struct TickingClock {
   }
 };
 
+// The tasks of one whole cycle of `scene` (interruptible, the paper's tasks).
+std::int64_t whole_cycle_tasks(const test::TestScene& scene) {
+  World world = build_world(scene.world);
+  InterruptibleHandler handler(InterruptibleHandler::Stale::Extrapolate);
+  handler.init(world, test::settings_of(world, scene));
+  Budget unlimited = Budget::unlimited();
+  REQUIRE(handler.step(world, unlimited).cycle_done);
+  return handler.cycle().tasks_done();
+}
+
+// The work units of one whole cycle of `scene` (full's).
+std::uint64_t whole_cycle_work(const test::TestScene& scene) {
+  World world = build_world(scene.world);
+  auto full = make_handler("full");
+  full->init(world, test::settings_of(world, scene));
+  Budget unlimited = Budget::unlimited();
+  return full->step(world, unlimited).work_units;
+}
+
+// What a handler step left on the world: every contact force and link.
+void clear_contact_forces(World& world) {
+  for (Body& b : world.bodies) std::fill(b.contact_force_n.begin(), b.contact_force_n.end(), Vec3::Zero());
+  world.contact_links.clear();
+}
+
+// The registry's `name` with apply_first on or off, initialised on `world`.
+std::unique_ptr<CollisionHandler> with_apply_first(const char* name, bool apply_first, const World& world,
+                                                   const test::TestScene& scene) {
+  MethodSettings settings(find_method(name).settings);
+  settings.set("apply_first", apply_first);
+  auto handler = make_handler(name, &settings);
+  handler->init(world, test::settings_of(world, scene));
+  return handler;
+}
+
 }  // namespace
 
 TEST_CASE("interruptible: the budget stops after exactly k tasks and resumes at k+1", "[interruptible]") {
   const test::TestScene scene = pressed_blocks();
-  // Learn how many tasks one whole cycle has.
-  std::int64_t total_tasks = 0;
-  {
-    World world = build_world(scene.world);
-    InterruptibleHandler handler(InterruptibleHandler::Stale::Extrapolate);
-    handler.init(world, test::settings_of(world, scene));
-    Budget unlimited = Budget::unlimited();
-    REQUIRE(handler.step(world, unlimited).cycle_done);
-    total_tasks = handler.cycle().tasks_done();
-  }
+  const std::int64_t total_tasks = whole_cycle_tasks(scene);
   for (int k : {1, 7, 40}) {
     INFO("k = " << k << " point queries in the first step; " << total_tasks << " tasks per cycle");
     World world = build_world(scene.world);
@@ -329,11 +356,9 @@ struct AppliedForces {
 
 AppliedForces take_forces(World& world, const StepReport& r) {
   AppliedForces f;
-  for (Body& b : world.bodies) {
-    f.contact_force_n.push_back(b.contact_force_n);
-    std::fill(b.contact_force_n.begin(), b.contact_force_n.end(), Vec3::Zero());
-  }
+  for (const Body& b : world.bodies) f.contact_force_n.push_back(b.contact_force_n);
   f.links.swap(world.contact_links);
+  clear_contact_forces(world);
   f.exact = r.exact_forces;
   f.estimated = r.estimated_forces;
   return f;
@@ -370,20 +395,10 @@ TEST_CASE("apply_first applies in step k+1 what the paper's order applies in ste
     scene.collision.response_mode = mode;
     scene.collision.damping_n_s_per_m = 2.0;
     // A quarter of a whole cycle's work a step: a cycle spans about 4 steps.
-    std::uint64_t cycle_work = 0;
-    {
-      World world = build_world(scene.world);
-      auto full = make_handler("full");
-      full->init(world, test::settings_of(world, scene));
-      Budget unlimited = Budget::unlimited();
-      cycle_work = full->step(world, unlimited).work_units;
-    }
+    const std::uint64_t cycle_work = whole_cycle_work(scene);
     const auto run = [&](bool apply_first) {
       World world = build_world(scene.world);
-      MethodSettings settings(find_method(name).settings);
-      settings.set("apply_first", apply_first);
-      auto handler = make_handler(name, &settings);
-      handler->init(world, test::settings_of(world, scene));
+      auto handler = with_apply_first(name, apply_first, world, scene);
       std::vector<AppliedForces> steps;
       std::int64_t cycles_done = 0;
       for (int s = 0; s < 60; ++s) {
@@ -409,28 +424,17 @@ TEST_CASE("apply_first applies in step k+1 what the paper's order applies in ste
   }
   // With extrapolation the stale forces differ (each is extrapolated to the
   // step it acts in), but which points get which kind of force does not.
-  test::TestScene scene = pressed_blocks();
-  std::uint64_t cycle_work = 0;
-  {
-    World world = build_world(scene.world);
-    auto full = make_handler("full");
-    full->init(world, test::settings_of(world, scene));
-    Budget unlimited = Budget::unlimited();
-    cycle_work = full->step(world, unlimited).work_units;
-  }
+  const test::TestScene scene = pressed_blocks();
+  const std::uint64_t cycle_work = whole_cycle_work(scene);
   const auto counts = [&](bool apply_first) {
     World world = build_world(scene.world);
-    MethodSettings settings(find_method("interruptible").settings);
-    settings.set("apply_first", apply_first);
-    auto handler = make_handler("interruptible", &settings);
-    handler->init(world, test::settings_of(world, scene));
+    auto handler = with_apply_first("interruptible", apply_first, world, scene);
     std::vector<std::pair<std::int64_t, std::int64_t>> c;
     for (int s = 0; s < 60; ++s) {
       Budget b = Budget::work_units(cycle_work / 4);
       const StepReport r = handler->step(world, b);
       c.emplace_back(r.exact_forces, r.estimated_forces);
-      for (auto& body : world.bodies) std::fill(body.contact_force_n.begin(), body.contact_force_n.end(), Vec3::Zero());
-      world.contact_links.clear();
+      clear_contact_forces(world);
     }
     return c;
   };
@@ -452,10 +456,7 @@ TEST_CASE("apply_first: after a cycle completes, its contacts alone act, not the
   for (const char* name : {"interruptible", "interruptible_tracked"}) {
     INFO(name);
     World world = build_world(scene.world);
-    MethodSettings settings(find_method(name).settings);
-    settings.set("apply_first", true);
-    auto handler = make_handler(name, &settings);
-    handler->init(world, test::settings_of(world, scene));
+    auto handler = with_apply_first(name, true, world, scene);
     Budget all = Budget::unlimited();
     REQUIRE(handler->step(world, all).cycle_done);
     const auto lift = [&](double up) {
@@ -470,8 +471,7 @@ TEST_CASE("apply_first: after a cycle completes, its contacts alone act, not the
     CHECK((second.exact_forces > 0) == (std::string(name) == "interruptible"));
     CHECK(handler->contacts().empty());
     lift(-0.02);  // back in contact: a stale force would now push
-    for (auto& b : world.bodies) std::fill(b.contact_force_n.begin(), b.contact_force_n.end(), Vec3::Zero());
-    world.contact_links.clear();
+    clear_contact_forces(world);
     Budget zero = Budget::work_units(0);
     const StepReport third = handler->step(world, zero);
     CHECK_FALSE(third.cycle_done);
@@ -487,22 +487,11 @@ TEST_CASE("apply_first applies before the step's first poll; the paper's order a
   const test::TestScene scene = pressed_blocks();
   // A budget of a quarter of a whole cycle's tasks (the clock ticks 1 ms a
   // reading, a reading a task): a cycle spans about 4 steps.
-  std::int64_t cycle_tasks = 0;
-  {
-    World world = build_world(scene.world);
-    InterruptibleHandler handler(InterruptibleHandler::Stale::Extrapolate);
-    handler.init(world, test::settings_of(world, scene));
-    Budget unlimited = Budget::unlimited();
-    REQUIRE(handler.step(world, unlimited).cycle_done);
-    cycle_tasks = handler.cycle().tasks_done();
-  }
+  const std::int64_t cycle_tasks = whole_cycle_tasks(scene);
   for (const bool apply_first : {false, true}) {
     INFO((apply_first ? "apply_first" : "the paper's order"));
     World world = build_world(scene.world);
-    MethodSettings settings(find_method("interruptible").settings);
-    settings.set("apply_first", apply_first);
-    auto handler = make_handler("interruptible", &settings);
-    handler->init(world, test::settings_of(world, scene));
+    auto handler = with_apply_first("interruptible", apply_first, world, scene);
     double now = 0.0;
     std::vector<std::size_t> pushed_at_reads;
     const ClockMs clock = [&] {
@@ -547,10 +536,6 @@ TEST_CASE("extrapolation continues from the step a cycle completed in, though it
   World world = build_world(scene.world);
   InterruptibleHandler handler(InterruptibleHandler::Stale::Extrapolate);
   handler.init(world, test::settings_of(world, scene));
-  const auto clear = [&] {
-    for (auto& b : world.bodies) std::fill(b.contact_force_n.begin(), b.contact_force_n.end(), Vec3::Zero());
-    world.contact_links.clear();
-  };
   const auto forces_of_cycle = [&] {
     std::map<std::pair<std::int32_t, std::int32_t>, Vec3> f;
     for (const Contact& c : handler.contacts())
@@ -560,12 +545,12 @@ TEST_CASE("extrapolation continues from the step a cycle completed in, though it
   Budget all = Budget::unlimited();
   REQUIRE(handler.step(world, all).cycle_done);
   const auto a = forces_of_cycle();
-  clear();
+  clear_contact_forces(world);
   for (Vec3& x : world.bodies[1].x_m) x.y() -= 0.001;
   Budget all_again = Budget::unlimited();
   REQUIRE(handler.step(world, all_again).cycle_done);
   const auto b = forces_of_cycle();
-  clear();
+  clear_contact_forces(world);
   Budget zero = Budget::work_units(0);
   const StepReport r = handler.step(world, zero);
   REQUIRE_FALSE(r.cycle_done);
