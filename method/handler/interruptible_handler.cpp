@@ -17,10 +17,11 @@ InterruptibleHandler::InterruptibleHandler(Stale stale, Options options)
 
 std::optional<InterruptibleHandler::StaleForce> InterruptibleHandler::stale_force(const World& world,
                                                                                   std::int32_t object,
-                                                                                  std::int32_t vertex) {
-  if (!m_has_history[object][vertex] || m_stale == Stale::Nothing) return std::nullopt;
+                                                                                  std::int32_t vertex,
+                                                                                  HistoryEntry* history) {
+  if (history == nullptr || m_stale == Stale::Nothing) return std::nullopt;
   if (m_stale == Stale::Extrapolate) {
-    ForceHistory& h = m_history[object][vertex];
+    ForceHistory& h = history->history;
     return StaleForce{h.contact, extrapolated_force(h, m_step), false};
   }
   Contact now = m_tracked[object][vertex];
@@ -48,42 +49,60 @@ void InterruptibleHandler::remember_completed_cycle(const std::vector<Contact>& 
   // contact kept for m_keep_lost_cycles more cycles; found with a depth, its
   // count starts again. Work is proportional to the points with a history,
   // never to all vertices.
-  // Swapped, not moved: both lists keep their capacity from cycle to cycle
+  // Swapped, not moved: the lists keep their capacity from cycle to cycle
   // (no allocation in steady state, and memory_bytes() sees their peak).
-  m_history_points_before.swap(m_history_points);
-  m_history_points.clear();
-  const std::vector<Point>& before = m_history_points_before;
-  for (const auto& [b, v] : before)
-    if (m_keep_lost_cycles == 0 || ++m_lost_cycles[b][v] > m_keep_lost_cycles) m_has_history[b][v] = 0;
-  std::vector<Point> found;
+  m_histories_before.swap(m_histories);
+  m_histories.clear();
+  m_histories_new.clear();
+  std::vector<HistoryEntry>& before = m_histories_before;
+  for (HistoryEntry& e : before)
+    e.keep = m_keep_lost_cycles > 0 && ++m_lost_cycles[e.point.first][e.point.second] <= m_keep_lost_cycles;
+  // While the lists are rebuilt, m_history_index holds i >= 0 for before[i]
+  // and -2 - i for m_histories_new[i].
   for (const Contact& c : contacts) {
     if (c.depth_source == DepthSource::None) continue;
-    record_depth_force(m_history[c.object][c.vertex], c, step, cycle_steps);
-    m_has_history[c.object][c.vertex] = 1;
+    std::int32_t& index = m_history_index[c.object][c.vertex];
+    if (index == -1) {
+      index = -2 - static_cast<std::int32_t>(m_histories_new.size());
+      m_histories_new.push_back(HistoryEntry{{c.object, c.vertex}, false, ForceHistory{}});
+    }
+    HistoryEntry& e = index >= 0 ? before[index] : m_histories_new[-2 - index];
+    record_depth_force(e.history, c, step, cycle_steps);
+    e.keep = true;
     if (m_keep_lost_cycles > 0) m_lost_cycles[c.object][c.vertex] = 0;
-    found.emplace_back(c.object, c.vertex);
   }
-  if (!std::is_sorted(found.begin(), found.end())) std::sort(found.begin(), found.end());  // queried in order: sorted
-  std::vector<Point> kept;
-  for (const auto& [b, v] : before) {
-    if (m_has_history[b][v]) kept.emplace_back(b, v);
-    else m_history[b][v] = ForceHistory{};
+  const auto by_point = [](const HistoryEntry& x, const HistoryEntry& y) { return x.point < y.point; };
+  if (!std::is_sorted(m_histories_new.begin(), m_histories_new.end(), by_point))
+    std::sort(m_histories_new.begin(), m_histories_new.end(), by_point);  // applied in order: sorted
+  // Merge the kept entries with the new ones (disjoint), ascending, and index them.
+  auto kept = before.begin();
+  auto added = m_histories_new.begin();
+  const auto take = [this](HistoryEntry& e) {
+    m_history_index[e.point.first][e.point.second] = static_cast<std::int32_t>(m_histories.size());
+    m_histories.push_back(std::move(e));
+  };
+  while (kept != before.end() || added != m_histories_new.end()) {
+    if (kept != before.end() && !kept->keep) {
+      m_history_index[kept->point.first][kept->point.second] = -1;
+      ++kept;
+    } else if (added == m_histories_new.end() || (kept != before.end() && kept->point < added->point)) {
+      take(*kept++);
+    } else {
+      take(*added++);
+    }
   }
-  std::merge(found.begin(), found.end(), kept.begin(), kept.end(), std::back_inserter(m_history_points));
-  m_history_points.erase(std::unique(m_history_points.begin(), m_history_points.end()), m_history_points.end());
 }
 
 std::optional<std::size_t> InterruptibleHandler::memory_bytes() const {
-  return *CycleHandler::memory_bytes() + heap_bytes(m_history) + heap_bytes(m_has_history) +
-         heap_bytes(m_history_points) + heap_bytes(m_history_points_before) + heap_bytes(m_tracked) +
+  return *CycleHandler::memory_bytes() + heap_bytes(m_histories) + heap_bytes(m_histories_before) +
+         heap_bytes(m_histories_new) + heap_bytes(m_history_index) + heap_bytes(m_tracked) +
          heap_bytes(m_lost_cycles) + heap_bytes(m_applied) + heap_bytes(m_completed);
 }
 
 void InterruptibleHandler::init(const World& world, const CollisionSettings& settings) {
   CycleHandler::init(world, settings);
   for (const Body& b : world.bodies) {
-    m_history.emplace_back(b.x_m.size());
-    m_has_history.emplace_back(b.x_m.size(), 0);
+    m_history_index.emplace_back(b.x_m.size(), -1);
     m_applied.emplace_back(b.x_m.size(), 0);
     m_tracked.emplace_back(m_stale == Stale::Track ? b.x_m.size() : 0);
     m_lost_cycles.emplace_back(m_keep_lost_cycles > 0 ? b.x_m.size() : 0, 0);
@@ -172,7 +191,8 @@ void InterruptibleHandler::apply_forces(World& world, StepReport& report, bool c
       ++report.exact_forces;
       report.exact_points.emplace_back(c.object, c.vertex);
     } else if (!cycle_complete) {
-      if (const auto f = stale_force(world, c.object, c.vertex)) {
+      const std::int32_t index = m_history_index[c.object][c.vertex];
+      if (const auto f = stale_force(world, c.object, c.vertex, index >= 0 ? &m_histories[index] : nullptr)) {
         apply_stale(world, *f);
         ++report.estimated_forces;
         report.force_points.push_back({c.object, c.vertex, stale_source()});
@@ -182,9 +202,10 @@ void InterruptibleHandler::apply_forces(World& world, StepReport& report, bool c
   if (!cycle_complete && m_stale != Stale::Nothing) {
     // Points in contact in earlier cycles that this cycle has not reached yet
     // (in ascending (body, vertex) order).
-    for (const auto& [object, vertex] : m_history_points) {
+    for (HistoryEntry& e : m_histories) {
+      const auto [object, vertex] = e.point;
       if (m_applied[object][vertex] == m_step) continue;
-      if (const auto f = stale_force(world, object, vertex)) {
+      if (const auto f = stale_force(world, object, vertex, &e)) {
         apply_stale(world, *f);
         ++report.estimated_forces;
         report.force_points.push_back({object, vertex, stale_source()});

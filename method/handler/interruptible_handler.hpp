@@ -119,7 +119,10 @@ class InterruptibleHandler final : public CycleHandler {
     Vec3 force_n;
     bool tracked;
   };
-  std::optional<StaleForce> stale_force(const World& world, std::int32_t object, std::int32_t vertex);
+  struct HistoryEntry;
+  /// `history`: the point's entry in m_histories, nullptr if it has none.
+  std::optional<StaleForce> stale_force(const World& world, std::int32_t object, std::int32_t vertex,
+                                        HistoryEntry* history);
   void apply_stale(World& world, const StaleForce& force) const;
   ForceSource stale_source() const { return m_stale == Stale::Track ? ForceSource::Tracked : ForceSource::Extrapolated; }
   /// The history after a cycle that completed at `step` in `cycle_steps` steps.
@@ -132,10 +135,20 @@ class InterruptibleHandler final : public CycleHandler {
   Stale m_stale;
   bool m_in_progress = false;
   std::int64_t m_step = 0, m_cycle_start = 0;
-  std::vector<std::vector<ForceHistory>> m_history;   // per body, per vertex
-  std::vector<std::vector<char>> m_has_history;
-  std::vector<Point> m_history_points;                // the points with has_history, ascending
-  std::vector<Point> m_history_points_before;         // remember_completed_cycle(): the previous list
+  /// A point with a history. The entries are dense, in ascending point
+  /// order, so the loop that applies the stale forces of points the cycle has
+  /// not reached reads them in one sweep instead of one per-vertex record
+  /// (about 330 bytes) scattered over the body: that loop runs in every
+  /// step of a cycle, after the dynamics have evicted the caches.
+  struct HistoryEntry {
+    Point point;
+    bool keep = false;  // remember_completed_cycle(): stays in the history
+    ForceHistory history;
+  };
+  std::vector<HistoryEntry> m_histories;         // ascending by point
+  std::vector<HistoryEntry> m_histories_before;  // remember_completed_cycle(): the previous list
+  std::vector<HistoryEntry> m_histories_new;     // remember_completed_cycle(): points new to it
+  std::vector<std::vector<std::int32_t>> m_history_index;  // per body, per vertex: entry in m_histories, or -1
   std::vector<std::vector<Contact>> m_tracked;        // per body, per vertex (Track only): last depth contact
   std::int64_t m_keep_lost_cycles;
   std::vector<std::vector<std::int64_t>> m_lost_cycles;  // per vertex (kept contacts only): cycles not found since

@@ -577,9 +577,10 @@ TEST_CASE("interruptible counts its force histories in its memory, beside the cy
   for (const auto stale : {InterruptibleHandler::Stale::Extrapolate, InterruptibleHandler::Stale::Track}) {
     InterruptibleHandler handler(stale);
     handler.init(world, test::settings_of(world, scene));
-    // A force history and a "last applied" step per vertex; Track keeps a
-    // contact per vertex as well.
-    const std::size_t own = vertices * (sizeof(ForceHistory) + sizeof(std::int64_t)) +
+    // An index into the dense histories and a "last applied" step per vertex
+    // (the histories themselves are empty before a cycle completes); Track
+    // keeps a contact per vertex as well.
+    const std::size_t own = vertices * (sizeof(std::int32_t) + sizeof(std::int64_t)) +
                             (stale == InterruptibleHandler::Stale::Track ? vertices * sizeof(Contact) : 0);
     CHECK(*handler.memory_bytes() >= handler.cycle().memory_bytes() + own);
   }
