@@ -7,7 +7,7 @@
 // canvases, the server refuses what it must, and Ctrl-C stops it cleanly.
 // Exit 77 (ctest: skipped) with a message when no browser can start.
 import { spawnSync } from 'node:child_process';
-import { mkdtempSync, mkdirSync } from 'node:fs';
+import { mkdtempSync, mkdirSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { startServer, launchBrowser } from '../browser.mjs';
@@ -26,6 +26,7 @@ async function main() {
   const bad = spawnSync(tcbench, ['view', empty, '--port', '0'], { encoding: 'utf8' });
   check(bad.status === 2 && bad.stderr.includes(empty) && bad.stderr.includes('replay.json'),
     `a directory without a replay is exit 2 naming it (got ${bad.status}: ${bad.stderr.trim()})`);
+  rmSync(empty, { recursive: true, force: true });
 
   const launched = await launchBrowser();
   if (launched.skip) { console.log(`SKIP viewer browser test: ${launched.skip}`); process.exit(77); }

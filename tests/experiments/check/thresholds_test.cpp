@@ -52,11 +52,20 @@ fs::path fixture() {
   return dir;
 }
 
-fs::path thresholds(const std::string& text) {
-  const fs::path path = fs::temp_directory_path() / ("tcbench_thresholds_" + std::to_string(::getpid()) + ".toml");
-  write_file_atomically(path, text);
-  return path;
+fs::path thresholds_path() {
+  return fs::temp_directory_path() / ("tcbench_thresholds_" + std::to_string(::getpid()) + ".toml");
 }
+
+fs::path thresholds(const std::string& text) {
+  write_file_atomically(thresholds_path(), text);
+  return thresholds_path();
+}
+
+// Removes the thresholds file when a test case ends, passed or failed (the
+// file used to be left in the temporary directory after every run).
+struct RemoveThresholdsFile {
+  ~RemoveThresholdsFile() { fs::remove(thresholds_path()); }
+};
 
 int cli(const std::vector<std::string>& args) {
   std::vector<const char*> argv{"tcbench"};
@@ -67,6 +76,7 @@ int cli(const std::vector<std::string>& args) {
 }  // namespace
 
 TEST_CASE("check passes, fails and reports missing runs and metrics", "[check]") {
+  const RemoveThresholdsFile cleanup;
   const fs::path dir = fixture();
   const fs::path pass = thresholds(R"([[threshold]]
 scene = "plates20"
@@ -114,8 +124,7 @@ min = 0.0
   CHECK(rows[1].verdict == "missing");  // null: nothing measured must not pass
   CHECK(rows[2].verdict == "missing");  // no such run
   CHECK(rows[3].verdict == "unknown metric");  // a misspelling, not a figure that was not measured (issue 15, defect 7)
-  CHECK(cli({"check", (fs::temp_directory_path() / ("tcbench_thresholds_" + std::to_string(::getpid()) + ".toml")).string(),
-             dir.string()}) == 1);
+  CHECK(cli({"check", thresholds_path().string(), dir.string()}) == 1);
   // A method's label tells runs with other settings apart.
   const std::vector<CheckRow> nth = check_thresholds(load_thresholds(thresholds(R"toml([[threshold]]
 scene = "plates20"
@@ -151,6 +160,7 @@ min = 0.5
 }
 
 TEST_CASE("check filters by response mode and bounds ratios to a reference run", "[check]") {
+  const RemoveThresholdsFile cleanup;
   const fs::path dir = fs::temp_directory_path() / ("tcbench_check_rel_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   const auto run = [&](const std::string& name, const std::string& method, const std::string& budget,
@@ -215,6 +225,7 @@ max = 2.0
 }
 
 TEST_CASE("a wall-clock threshold on a noisy run is inconclusive: exit 4, or 1 with --strict-timing", "[check]") {
+  const RemoveThresholdsFile cleanup;
   const fs::path dir = fs::temp_directory_path() / ("tcbench_check_noisy_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   const auto run = [&](const std::string& name, const std::string& kind, const std::string& verdict,
@@ -273,6 +284,7 @@ min = 0.5
 }
 
 TEST_CASE("check rejects malformed thresholds files with exit 2, naming file and line", "[check]") {
+  const RemoveThresholdsFile cleanup;
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"[[threshold]]\nscene = \"plates20\"\nmethod = \"full\"\nmetric = \"recall_min\"\n", ":1: threshold: give min"},
       {"[[threshold]]\nscene = \"plates20\"\nmethod = \"full\"\nmetric = \"recall_min\"\nmin = \"high\"\n", ":5: threshold.min"},
@@ -298,6 +310,7 @@ TEST_CASE("check rejects malformed thresholds files with exit 2, naming file and
 
 TEST_CASE("check: a threshold may state a run's status and reason, and pick runs by their --set overrides",
           "[check]") {
+  const RemoveThresholdsFile cleanup;
   const fs::path dir = fs::temp_directory_path() / ("tcbench_check_status_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   const auto run = [&](const std::string& name, const std::vector<std::string>& sets, const std::string& status,

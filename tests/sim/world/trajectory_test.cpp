@@ -13,15 +13,23 @@ namespace fs = std::filesystem;
 
 namespace {
 
+fs::path csv_path() { return fs::temp_directory_path() / ("tcbench_path_" + std::to_string(::getpid()) + ".csv"); }
+
 fs::path write_csv(const std::string& text) {
-  const fs::path path = fs::temp_directory_path() / ("tcbench_path_" + std::to_string(::getpid()) + ".csv");
-  write_file_atomically(path, text);
-  return path;
+  write_file_atomically(csv_path(), text);
+  return csv_path();
 }
+
+// Removes the trajectory file when a test case ends, passed or failed (it
+// used to be left in the temporary directory after every run).
+struct RemoveCsv {
+  ~RemoveCsv() { fs::remove(csv_path()); }
+};
 
 }  // namespace
 
 TEST_CASE("trajectory: linear between samples, held outside them", "[trajectory]") {
+  const RemoveCsv cleanup;
   const Trajectory t = read_trajectory_csv(write_csv("time_s,x_m,y_m,z_m\n0,0,1,0\n0.5,1,1,0\n1.0,1,0,2\n"));
   CHECK(t.at(-1.0) == Vec3(0, 1, 0));
   CHECK(t.at(0.25).isApprox(Vec3(0.5, 1, 0)));
@@ -31,6 +39,7 @@ TEST_CASE("trajectory: linear between samples, held outside them", "[trajectory]
 }
 
 TEST_CASE("trajectory: malformed files name the file and the line", "[trajectory]") {
+  const RemoveCsv cleanup;
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"t,x,y,z\n0,0,0,0\n", ":1: expected the header"},
       {"time_s,x_m,y_m,z_m\n0,0,0\n", ":2: expected 4 values"},
@@ -48,6 +57,7 @@ TEST_CASE("trajectory: malformed files name the file and the line", "[trajectory
 }
 
 TEST_CASE("a driven body follows its trajectory with the velocity of that motion, never integrated", "[trajectory]") {
+  const RemoveCsv cleanup;
   WorldDesc scene;
   ObjectDesc probe;
   probe.name = "probe";
