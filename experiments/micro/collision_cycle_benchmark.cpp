@@ -11,12 +11,14 @@
 // hash: 0 = mixed (default), 1 = the paper's xor of primes. threads: the
 // cycle's collision.threads (its tet hashing, point queries and border depths
 // in parallel; the same contacts on every count, which the counter
-// `colliding` shows).
+// `colliding` shows). ms_<stage>: the cycle's wall time per stage, per cycle.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <set>
+#include <string>
 
 #include "experiments/scene/scene_file.hpp"
 #include "method/handler/collision_cycle.hpp"
@@ -86,13 +88,21 @@ void run_cycles(benchmark::State& state, Fixture& f, CollisionSettings settings)
   CollisionCycle cycle(f.world, std::move(settings));
   std::size_t colliding = 0, tets = 0;
   for (const Body& b : f.world.bodies) tets += b.mesh->tet_count();
+  StageCosts stages;  // summed over the iterations
   for (auto _ : state) {
     cycle.begin(f.world);
+    cycle.start_step_costs();
     Budget unlimited = Budget::unlimited();
     cycle.advance(f.world, unlimited);
     colliding = cycle.contacts().size();
     benchmark::DoNotOptimize(cycle.contacts().data());
+    for (std::size_t s = 0; s < kCostStages; ++s) stages.ms[s] += cycle.step_costs().ms[s];
   }
+  // ms_<stage>: the cycle's wall time per stage (its steady clock, read at
+  // stage changes), per cycle: where a thread count's speed-up is limited.
+  for (std::size_t s = 0; s + 1 < kCostStages; ++s)  // the last, apply, is the handler's
+    state.counters["ms_" + std::string(cost_stage_name(static_cast<CostStage>(s)))] =
+        stages.ms[s] / static_cast<double>(std::max<benchmark::IterationCount>(state.iterations(), 1));
   state.counters["tets"] = static_cast<double>(tets);
   state.counters["colliding"] = static_cast<double>(colliding);
   state.counters["ns_per_tet"] =
