@@ -1,5 +1,6 @@
 #include "method/depth/penetration_depth.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "method/geometry/perturbed_predicates.hpp"
@@ -23,12 +24,47 @@ std::size_t SurfaceHash::memory_bytes() const {
   return m_hash.memory_bytes() + heap_bytes(m_offset) + heap_bytes(m_owner);
 }
 
-std::uint64_t SurfaceHash::hash_triangle(const World& world, std::int32_t body, std::int32_t triangle) {
+void SurfaceHash::triangle_box(const World& world, std::int32_t body, std::int32_t triangle, Vec3& lo,
+                               Vec3& hi) const {
   const auto& x = world.bodies[body].x_m;
   const Triangle& f = world.bodies[body].mesh->surface[triangle];
-  const Vec3 lo = x[f[0]].cwiseMin(x[f[1]]).cwiseMin(x[f[2]]);
-  const Vec3 hi = x[f[0]].cwiseMax(x[f[1]]).cwiseMax(x[f[2]]);
+  lo = x[f[0]].cwiseMin(x[f[1]]).cwiseMin(x[f[2]]);
+  hi = x[f[0]].cwiseMax(x[f[1]]).cwiseMax(x[f[2]]);
+}
+
+std::uint64_t SurfaceHash::hash_triangle(const World& world, std::int32_t body, std::int32_t triangle) {
+  Vec3 lo, hi;
+  triangle_box(world, body, triangle, lo, hi);
   return work::kCellInsert * m_hash.insert_box(lo, hi, m_offset[body] + static_cast<std::uint32_t>(triangle));
+}
+
+double SurfaceHash::triangle_work(const World& world, std::int32_t body, std::int32_t triangle) const {
+  Vec3 lo, hi;
+  triangle_box(world, body, triangle, lo, hi);
+  return static_cast<double>(work::kCellInsert) * m_hash.cells_of_box(lo, hi);
+}
+
+void SurfaceHash::hash_all(const World& world, const std::vector<std::int32_t>& bodies, WorkerPool& pool,
+                           std::vector<std::uint64_t>& work) {
+  // first[k]: the walk index of body k's first triangle.
+  std::vector<std::size_t> first(bodies.size() + 1, 0);
+  for (std::size_t k = 0; k < bodies.size(); ++k)
+    first[k + 1] = first[k] + world.bodies[static_cast<std::size_t>(bodies[k])].mesh->surface.size();
+  work.assign(first.back(), 0);
+  m_hash.insert_all_and_build(
+      first.back(),
+      [&](std::size_t i, Vec3& lo, Vec3& hi, std::uint32_t& item) {
+        const std::size_t k = static_cast<std::size_t>(std::upper_bound(first.begin() + 1, first.end(), i) -
+                                                       (first.begin() + 1));
+        const std::int32_t body = bodies[k];
+        const auto triangle = static_cast<std::int32_t>(i - first[k]);
+        triangle_box(world, body, triangle, lo, hi);
+        item = m_offset[static_cast<std::size_t>(body)] + static_cast<std::uint32_t>(triangle);
+        // An absurd box throws in the insertion that follows; its work is never read.
+        work[i] = static_cast<std::uint64_t>(std::min(static_cast<double>(work::kCellInsert) * m_hash.cells_of_box(lo, hi), 0x1p53));
+        return true;
+      },
+      pool);
 }
 
 std::uint64_t border_edge_crossing(const World& world, const Contact& c, std::int32_t q_vertex,

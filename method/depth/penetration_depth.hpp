@@ -38,6 +38,15 @@ class SurfaceHash {
   void begin_epoch() { m_hash.begin_epoch(); }
   /// Hashes one surface triangle at the current positions; returns work units.
   std::uint64_t hash_triangle(const World& world, std::int32_t body, std::int32_t triangle);
+  /// The work hash_triangle() would return for the triangle now, hashing
+  /// nothing (a double: an absurd box neither overflows nor throws here).
+  double triangle_work(const World& world, std::int32_t body, std::int32_t triangle) const;
+  /// hash_triangle() for every triangle of `bodies` in order (each body's
+  /// ascending), then build(), on the pool's threads: exactly the table those
+  /// serial calls make (SpatialHash::insert_all_and_build). Call it right
+  /// after begin_epoch(). work[i] receives the i-th triangle's work units.
+  void hash_all(const World& world, const std::vector<std::int32_t>& bodies, WorkerPool& pool,
+                std::vector<std::uint64_t>& work);
   /// After the last triangle: makes the hash queryable.
   void build() { m_hash.build(); }
   /// build() in pieces (SpatialHash::begin_build, build_some).
@@ -66,6 +75,7 @@ class SurfaceHash {
   }
 
  private:
+  void triangle_box(const World& world, std::int32_t body, std::int32_t triangle, Vec3& lo, Vec3& hi) const;
   SpatialHash m_hash;
   std::vector<std::uint32_t> m_offset;
   std::vector<std::int32_t> m_owner;

@@ -62,6 +62,12 @@ void SpatialHash::check_box(std::int64_t ni, std::int64_t nj, std::int64_t nk) c
                        " m: the simulation has diverged, or collision.cell_size is far too small for the elements");
 }
 
+double SpatialHash::cells_of_box(const Vec3& lo, const Vec3& hi) const {
+  double cells = 1.0;
+  for (int a = 0; a < 3; ++a) cells *= static_cast<double>(cell_of(hi[a]) - cell_of(lo[a]) + 1);
+  return cells;
+}
+
 std::size_t SpatialHash::insert_box(const Vec3& lo, const Vec3& hi, std::uint32_t item) {
   return buckets_of_box(lo, hi, [&](std::uint32_t b) {
     m_entries.push_back({item, b});

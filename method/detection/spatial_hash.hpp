@@ -61,6 +61,10 @@ class SpatialHash {
   /// Inserts item into every cell its box [lo, hi] overlaps; returns the
   /// number of cells (each a unit of work).
   std::size_t insert_box(const Vec3& lo, const Vec3& hi, std::uint32_t item);
+  /// The cells insert_box(lo, hi, .) would insert into (its work), without
+  /// touching the table; a double, so an absurd box neither overflows nor
+  /// throws here (insert_box() throws for it).
+  double cells_of_box(const Vec3& lo, const Vec3& hi) const;
   /// Makes the inserted entries queryable (see file comment).
   void build();
   /// build() in pieces, for interruptible callers: begin_build(), then

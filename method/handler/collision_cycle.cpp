@@ -325,6 +325,22 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
         if (m_cursor == m_queries.size()) enter(Stage::HashSurface, world);
         break;
       case Stage::HashSurface:
+        if (m_pool && m_surface_body == 0 && m_cursor == 0 && !m_surface_bodies.empty() &&
+            surface_fits(world, budget)) {
+          // The whole stage on the threads: the same table, charged as the
+          // one-triangle tasks below would be, none of which the budget stops.
+          m_surface.hash_all(world, m_surface_bodies, *m_pool, m_surface_work);
+          ++m_parallel_surface_hashes;
+          for (std::size_t i = 0; i + 1 < m_surface_work.size(); ++i) {
+            budget.charge(m_surface_work[i]);
+            m_step_costs.work_of(task_stage) += m_surface_work[i];
+            ++m_tasks;
+          }
+          work = m_surface_work.empty() ? 0 : m_surface_work.back();
+          m_surface_body = m_surface_bodies.size();
+          enter(Stage::BorderDepth, world);
+          break;
+        }
         if (m_surface_body < m_surface_bodies.size()) {
           const std::int32_t body = m_surface_bodies[m_surface_body];
           work = m_surface.hash_triangle(world, body, static_cast<std::int32_t>(m_cursor++));
@@ -470,6 +486,32 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
   return m_stage == Stage::Done;
 }
 
+bool CollisionCycle::surface_fits(const World& world, const Budget& budget) const {
+  // Unlimited: it fits. A work budget: when the stage's work leaves the
+  // budget unspent, so no poll among its tasks (nor the build's, under fine
+  // tasks) would stop it; the sum is counted on the threads first. A wall
+  // budget: which task it stops at is not known ahead, so one a task.
+  if (budget.kind() == BudgetKind::None) return true;
+  if (budget.kind() != BudgetKind::Work) return false;
+  const auto threads = static_cast<std::size_t>(m_pool->threads());
+  std::vector<double> part_work(threads, 0.0);
+  std::vector<std::size_t> first(m_surface_bodies.size() + 1, 0);
+  for (std::size_t k = 0; k < m_surface_bodies.size(); ++k)
+    first[k + 1] = first[k] + world.bodies[static_cast<std::size_t>(m_surface_bodies[k])].mesh->surface.size();
+  m_pool->for_ranges(first.back(), [&](int part, std::size_t begin, std::size_t end) {
+    double sum = 0.0;
+    std::size_t k = static_cast<std::size_t>(std::upper_bound(first.begin() + 1, first.end(), begin) - (first.begin() + 1));
+    for (std::size_t i = begin; i < end; ++i) {
+      while (i >= first[k + 1]) ++k;
+      sum += m_surface.triangle_work(world, m_surface_bodies[k], static_cast<std::int32_t>(i - first[k]));
+    }
+    part_work[static_cast<std::size_t>(part)] = sum;
+  });
+  double total = static_cast<double>(budget.spent());
+  for (double w : part_work) total += w;
+  return total < budget.limit();
+}
+
 bool CollisionCycle::batch_holds(const World& world) const {
   return m_batch_step == world.step_index && m_cursor >= m_batch_begin && m_cursor < m_batch_begin + m_batch.size();
 }
@@ -510,7 +552,11 @@ void CollisionCycle::run_batch(std::size_t remaining, const World& world, const 
   m_batch_step = world.step_index;
   const bool timed = budget.kind() == BudgetKind::WallMs;
   const double start_ms = timed ? m_clock() : 0.0;
-  m_pool->for_ranges(size, f);
+  // Chunks taken as threads come free: a batch's costly items (colliding
+  // points, deep contacts) cluster, and static halves left one thread idle.
+  // 16 items: a batch of 64 a thread still splits into 4 chunks a thread.
+  constexpr std::size_t kChunk = 16;
+  m_pool->for_chunks(size, kChunk, f);
   if (!timed || size == 0) return;
   const double item_ms = (m_clock() - start_ms) / static_cast<double>(size);
   double& recent = m_batch_item_ms[static_cast<std::size_t>(cost_stage(m_stage))];
@@ -566,7 +612,7 @@ std::size_t CollisionCycle::memory_bytes() const {
   std::size_t bytes = m_detector.memory_bytes() + m_surface.memory_bytes() + heap_bytes(m_query_order) +
                       heap_bytes(m_queries) + heap_bytes(m_surface_bodies) + heap_bytes(m_layer_items) +
                       heap_bytes(m_layer_mark) + heap_bytes(m_contacts) + heap_bytes(m_lookup) + heap_bytes(m_batch) +
-                      heap_bytes(m_thread_scratch) + heap_bytes(m_surface_scratch);
+                      heap_bytes(m_thread_scratch) + heap_bytes(m_surface_scratch) + heap_bytes(m_surface_work);
   for (const auto& s : m_thread_scratch) bytes += heap_bytes(s.tested);
   for (const auto& s : m_surface_scratch) bytes += heap_bytes(s.seen);
   return bytes;

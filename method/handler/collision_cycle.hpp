@@ -77,7 +77,14 @@
 /// re-detection changes what later depths read): each depth is computed on a
 /// copy of its contact and taken in order, one a task, with its own work.
 /// A cycle resumed in a later step re-detects its points, and its depths run
-/// serially. The surface hash, propagation and forces stay on one thread.
+/// serially. The HashSurface stage runs on the pool as a whole
+/// (SurfaceHash::hash_all: the same table) when the step's budget affords it:
+/// without a budget, or under a work budget whose units left exceed the
+/// stage's work (summed on the pool first), so no poll among its tasks would
+/// stop it; each triangle's work is charged as its own task would be, and
+/// the table is built at once (under fine tasks no BuildSurfaceHash tasks
+/// follow: they charge nothing). Under a wall budget it stays one triangle a
+/// task. Propagation and forces stay on one thread.
 
 #include <array>
 #include <cstdint>
@@ -209,6 +216,8 @@ class CollisionCycle {
   /// Progress, for schedules and tests: tasks run in this cycle, points
   /// queried, and how many contacts (a prefix of contacts()) have their force.
   std::int64_t tasks_done() const { return m_tasks; }
+  /// How many surface hashes ran on the threads as a whole (see above).
+  std::int64_t parallel_surface_hashes() const { return m_parallel_surface_hashes; }
   /// Heap bytes of everything the cycle holds: both hashes, boxes, queries,
   /// contacts and their lookup, batches and every thread's scratch (the
   /// world's meshes and positions are not the cycle's).
@@ -230,6 +239,8 @@ class CollisionCycle {
   void start_layer_scan();
   bool scan_layer_some(const World& world, std::size_t max_contacts);
   bool batch_holds(const World& world) const;
+  /// Whether the whole HashSurface stage may run on the pool now (see above).
+  bool surface_fits(const World& world, const Budget& budget) const;
   void query_batch(const World& world, const Budget& budget);
   std::size_t batch_size(std::size_t remaining, const Budget& budget) const;
   /// Starts a batch at the cursor (its size from batch_size(), for this
@@ -290,6 +301,8 @@ class CollisionCycle {
   std::size_t m_batch_begin = 0;
   std::int64_t m_batch_step = -1;       // the step whose positions and tables they were computed at
   std::vector<SurfaceHash::QueryScratch> m_surface_scratch;  // [0] the serial path's; with a pool, one a thread
+  std::vector<std::uint64_t> m_surface_work;  // the threads' surface hash: each triangle's work, in walk order
+  std::int64_t m_parallel_surface_hashes = 0;
   std::int64_t m_depth_check_step = -1;  // the step depth_batch_allowed() last decided at
   bool m_depth_batchable = false;
   std::array<double, kCostStages> m_batch_item_ms{};  // wall budgets: recent batch time per item, per stage

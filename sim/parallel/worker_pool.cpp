@@ -1,5 +1,7 @@
 #include "sim/parallel/worker_pool.hpp"
 
+#include <algorithm>
+#include <atomic>
 #include <stdexcept>
 
 namespace tcb {
@@ -73,6 +75,30 @@ void WorkerPool::for_ranges(std::size_t n, const RangeFunction& f) {
   m_function = nullptr;
   for (const std::exception_ptr& e : m_errors)
     if (e) std::rethrow_exception(e);
+}
+
+void WorkerPool::for_chunks(std::size_t n, std::size_t chunk, const RangeFunction& f) {
+  if (chunk == 0) throw std::invalid_argument("for_chunks needs chunks of at least one index");
+  const std::size_t chunks = (n + chunk - 1) / chunk;
+  std::atomic<std::size_t> next{0};
+  std::vector<std::size_t> failed_chunk(static_cast<std::size_t>(m_threads), chunks);
+  std::vector<std::exception_ptr> failed(static_cast<std::size_t>(m_threads));
+  for_ranges(static_cast<std::size_t>(m_threads), [&](int part, std::size_t, std::size_t) {
+    const auto p = static_cast<std::size_t>(part);
+    for (std::size_t c = next.fetch_add(1); c < chunks; c = next.fetch_add(1)) {
+      try {
+        f(part, c * chunk, std::min(n, (c + 1) * chunk));
+      } catch (...) {
+        failed_chunk[p] = c;
+        failed[p] = std::current_exception();
+        return;
+      }
+    }
+  });
+  std::size_t first = 0;
+  for (std::size_t p = 1; p < failed.size(); ++p)
+    if (failed_chunk[p] < failed_chunk[first]) first = p;
+  if (failed[first]) std::rethrow_exception(failed[first]);
 }
 
 }  // namespace tcb

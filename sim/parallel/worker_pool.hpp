@@ -1,11 +1,14 @@
 #pragma once
-/// A fixed set of threads that run one function over contiguous index ranges
-/// and wait for it: the collision cycle's parallel tet hashing, point
-/// queries and border depths (collision.threads). Threads inherit the creating thread's CPU affinity, so
-/// a pool started on a pinned thread shares its CPU. Plain std::thread, not TBB: the work is one
-/// flat loop split into as many static ranges as threads, with nothing to
-/// steal or nest, and static ranges make it plain which thread did which index
-/// (results are written per index, so they never depend on the split).
+/// A fixed set of threads that run one function over index ranges and wait
+/// for it: the collision cycle's parallel tet and surface hashing, point
+/// queries and border depths (collision.threads). Threads inherit the
+/// creating thread's CPU affinity, so a pool started on a pinned thread
+/// shares its CPU. Plain std::thread, not TBB: the work is one flat loop,
+/// with nothing to nest. for_ranges() splits it into static ranges, one a
+/// thread (the hash builds need each thread's range contiguous and in
+/// order); for_chunks() hands out small chunks as threads come free, for
+/// loops whose items differ in cost. Results are written per index, so they
+/// never depend on the split.
 ///
 /// Contract: threads >= 1; a pool of 1 runs everything on the caller's thread
 /// and starts none. for_ranges(n, f) calls f(part, begin, end) for part
@@ -37,6 +40,15 @@ class WorkerPool {
 
   int threads() const { return m_threads; }
   void for_ranges(std::size_t n, const RangeFunction& f);
+  /// f(part, begin, end) over [0, n) in chunks of `chunk` indices (the last
+  /// may be shorter), each thread taking the next chunk when it finishes one:
+  /// for loops whose items differ in cost (a colliding point costs far more
+  /// than a free one), where static ranges leave one thread idle. `part`
+  /// names the calling thread (for its scratch), not a fixed range, so f must
+  /// write its results per index. An exception is rethrown after all threads
+  /// stopped: the one of the lowest chunk, i.e. the one a serial loop over
+  /// [0, n) would have met first (a thread stops at its first).
+  void for_chunks(std::size_t n, std::size_t chunk, const RangeFunction& f);
 
   /// [begin, end) of `part` when n indices are split over `parts` (exposed for tests).
   static std::pair<std::size_t, std::size_t> range_of(std::size_t n, int parts, int part);

@@ -125,6 +125,10 @@ TEST_CASE("threads change neither contacts, depths nor any task's work, one task
       whole.begin(w);
       Budget unlimited = Budget::unlimited();
       REQUIRE(whole.advance(w, unlimited));
+      // Without a budget the surface hash ran on the threads as a whole; one
+      // task a call never affords it.
+      CHECK(whole.parallel_surface_hashes() == (threads > 1 ? 1 : 0));
+      CHECK(cycle.parallel_surface_hashes() == 0);
       if (threads == 1) {
         serial_contacts = cycle.contacts();
         serial_trace = trace;
@@ -159,6 +163,51 @@ TEST_CASE("threads change neither contacts, depths nor any task's work, one task
       }
     }
   }
+}
+
+TEST_CASE("the surface hash on threads is charged as one triangle a task, and runs only when the budget affords it",
+          "[cycle][threads]") {
+  // Work budgets of several sizes a call: where the HashSurface stage fits
+  // in what a call has left, it runs on the threads as a whole; elsewhere one
+  // triangle a task. Every call's stage, work, largest charge and outcome,
+  // and every contact, must be one thread's, both under the paper's tasks
+  // and under fine tasks (whose table builds then run at once).
+  std::int64_t parallel = 0, serial_with_pool = 0;
+  for (const auto& [name, scene] : test::collision_scenes())
+    for (const bool fine : {false, true})
+      for (const std::uint64_t units : {std::uint64_t{30}, std::uint64_t{700}, std::uint64_t{20000}}) {
+        INFO(name << (fine ? " fine" : " paper's tasks") << " work " << units);
+        using Trace = std::vector<std::tuple<int, std::uint64_t, std::uint64_t, bool>>;
+        Trace serial_trace;
+        std::vector<Contact> serial_contacts;
+        for (const int threads : {1, 2}) {
+          World w = build_world(scene);
+          CollisionSettings settings = test::settings_of(w, scene);
+          settings.threads = threads;
+          CycleSchedule schedule;
+          if (fine) schedule.granularity = TaskGranularity::fine_tasks();
+          CollisionCycle cycle(w, settings, DetectionMode::SpatialHash, schedule);
+          cycle.begin(w);
+          Trace trace;
+          for (bool done = false; !done;) {
+            Budget budget = Budget::work_units(units);
+            done = cycle.advance(w, budget);
+            trace.emplace_back(static_cast<int>(cycle.stage()), budget.spent(), budget.max_task_work(), done);
+            REQUIRE(trace.size() < 1000000);
+          }
+          if (threads == 1) {
+            serial_trace = trace;
+            serial_contacts = cycle.contacts();
+          } else {
+            CHECK(trace == serial_trace);
+            CHECK(same_contacts(cycle.contacts(), serial_contacts));
+            parallel += cycle.parallel_surface_hashes();
+            serial_with_pool += cycle.parallel_surface_hashes() == 0 && !serial_contacts.empty();
+          }
+        }
+      }
+  CHECK(parallel > 0);          // some budgets afforded the whole stage
+  CHECK(serial_with_pool > 0);  // and some did not
 }
 
 TEST_CASE("threads change nothing when a cycle spans moving steps and re-detects its points", "[cycle][threads]") {

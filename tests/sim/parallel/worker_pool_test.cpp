@@ -2,7 +2,9 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <stdexcept>
 #include <thread>
 #include <vector>
@@ -61,4 +63,45 @@ TEST_CASE("worker pool rethrows the lowest failing part's exception after all pa
   pool.for_ranges(10, [&](int, std::size_t b, std::size_t e) { sum += e - b; });
   CHECK(sum == 10);
   CHECK_THROWS_AS(WorkerPool(0), std::invalid_argument);
+}
+
+TEST_CASE("worker pool chunks cover every index once, each chunk whole, and rethrow the lowest chunk's exception",
+          "[worker_pool]") {
+  for (int threads : {1, 2, 3}) {
+    WorkerPool pool(threads);
+    for (std::size_t chunk : {1, 5, 16})
+      for (std::size_t n : {0, 1, 15, 16, 17, 1000}) {
+        std::vector<int> hits(n, 0);
+        std::atomic<int> calls{0};
+        pool.for_chunks(n, chunk, [&](int part, std::size_t begin, std::size_t end) {
+          REQUIRE(part >= 0);
+          REQUIRE(part < threads);
+          // A chunk is [c * chunk, min(n, (c + 1) * chunk)).
+          REQUIRE(begin % chunk == 0);
+          REQUIRE(end == std::min(n, begin + chunk));
+          ++calls;
+          for (std::size_t i = begin; i < end; ++i) ++hits[i];
+        });
+        for (int h : hits) REQUIRE(h == 1);
+        REQUIRE(static_cast<std::size_t>(calls) == (n + chunk - 1) / chunk);
+      }
+    // Indices 40 and 95 fail; a serial loop meets 40 first, whichever thread
+    // ran its chunk and in whatever order the chunks were taken.
+    for (int round = 0; round < 20; ++round) {
+      try {
+        pool.for_chunks(200, 10, [&](int, std::size_t begin, std::size_t end) {
+          for (std::size_t i = begin; i < end; ++i)
+            if (i == 40 || i == 95) {
+              // The lower failure comes last in time, on whichever thread.
+              if (i == 40 && threads > 1) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+              throw std::runtime_error("index " + std::to_string(i));
+            }
+        });
+        FAIL("no exception");
+      } catch (const std::runtime_error& e) {
+        REQUIRE(std::string(e.what()) == "index 40");
+      }
+    }
+    CHECK_THROWS_AS(pool.for_chunks(10, 0, [](int, std::size_t, std::size_t) {}), std::invalid_argument);
+  }
 }
