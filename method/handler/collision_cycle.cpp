@@ -525,7 +525,14 @@ std::size_t CollisionCycle::batch_size(std::size_t remaining, const Budget& budg
   const auto threads = static_cast<std::size_t>(m_pool->threads());
   if (budget.kind() == BudgetKind::None) return remaining;
   std::size_t size = kPerThread * threads;
-  if (budget.kind() == BudgetKind::WallMs) {
+  if (budget.kind() == BudgetKind::Work) {
+    // Every query and border-depth task charges at least one unit, so no
+    // more tasks than units left run before the budget expires (and one
+    // when none are left: a step always runs a task). Answers beyond that
+    // would be dropped unread.
+    const double left = std::ceil(budget.limit() - static_cast<double>(budget.spent()));
+    size = std::min(size, left >= 1.0 ? static_cast<std::size_t>(std::min(left, static_cast<double>(size))) : 1);
+  } else if (budget.kind() == BudgetKind::WallMs) {
     // The whole batch falls in one task, between two polls: sized to the
     // time left at what this stage's recent batches took per item (a few a
     // thread until one was measured), so the task ends near the limit

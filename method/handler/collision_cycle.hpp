@@ -62,7 +62,7 @@
 ///
 /// With settings.threads > 1 (spatial hash only) the QueryPoints stage answers
 /// a batch of queries ahead on a WorkerPool (all remaining points without a
-/// budget, 64 a thread under a work budget), then takes the answers one a task in the
+/// budget; under a work budget 64 a thread, at most the units left), then takes the answers one a task in the
 /// serial order with each query's own work: contacts, work units and where a
 /// budget stops are those of one thread. A batch holds for its step only and
 /// is dropped by begin() and by a refresh; the batch's time falls in the task
