@@ -100,9 +100,11 @@ void run_cycles(benchmark::State& state, Fixture& f, CollisionSettings settings)
   }
   // ms_<stage>: the cycle's wall time per stage (its steady clock, read at
   // stage changes), per cycle: where a thread count's speed-up is limited.
-  for (std::size_t s = 0; s + 1 < kCostStages; ++s)  // the last, apply, is the handler's
+  for (std::size_t s = 0; s < kCostStages; ++s) {
+    if (static_cast<CostStage>(s) == CostStage::Apply) continue;  // the handler's, not the cycle's
     state.counters["ms_" + std::string(cost_stage_name(static_cast<CostStage>(s)))] =
         stages.ms[s] / static_cast<double>(std::max<benchmark::IterationCount>(state.iterations(), 1));
+  }
   state.counters["tets"] = static_cast<double>(tets);
   state.counters["colliding"] = static_cast<double>(colliding);
   state.counters["ns_per_tet"] =

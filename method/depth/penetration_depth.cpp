@@ -44,27 +44,53 @@ double SurfaceHash::triangle_work(const World& world, std::int32_t body, std::in
   return static_cast<double>(work::kCellInsert) * m_hash.cells_of_box(lo, hi);
 }
 
-void SurfaceHash::hash_all(const World& world, const std::vector<std::int32_t>& bodies, WorkerPool& pool,
-                           std::vector<std::uint64_t>& work) {
-  // first[k]: the walk index of body k's first triangle.
+std::vector<std::size_t> SurfaceHash::walk_starts(const World& world, const std::vector<std::int32_t>& bodies) {
   std::vector<std::size_t> first(bodies.size() + 1, 0);
   for (std::size_t k = 0; k < bodies.size(); ++k)
     first[k + 1] = first[k] + world.bodies[static_cast<std::size_t>(bodies[k])].mesh->surface.size();
+  return first;
+}
+
+std::size_t SurfaceHash::body_at(const std::vector<std::size_t>& first, std::size_t i) {
+  return static_cast<std::size_t>(std::upper_bound(first.begin() + 1, first.end(), i) - (first.begin() + 1));
+}
+
+std::size_t SurfaceHash::triangle_count(const World& world, const std::vector<std::int32_t>& bodies) {
+  return walk_starts(world, bodies).back();
+}
+
+void SurfaceHash::hash_all(const World& world, const std::vector<std::int32_t>& bodies, WorkerPool& pool,
+                           std::vector<std::uint64_t>& work) {
+  const std::vector<std::size_t> first = walk_starts(world, bodies);
   work.assign(first.back(), 0);
-  m_hash.insert_all_and_build(
-      first.back(),
-      [&](std::size_t i, Vec3& lo, Vec3& hi, std::uint32_t& item) {
-        const std::size_t k = static_cast<std::size_t>(std::upper_bound(first.begin() + 1, first.end(), i) -
-                                                       (first.begin() + 1));
-        const std::int32_t body = bodies[k];
-        const auto triangle = static_cast<std::int32_t>(i - first[k]);
-        triangle_box(world, body, triangle, lo, hi);
-        item = m_offset[static_cast<std::size_t>(body)] + static_cast<std::uint32_t>(triangle);
-        // An absurd box throws in the insertion that follows; its work is never read.
-        work[i] = static_cast<std::uint64_t>(std::min(static_cast<double>(work::kCellInsert) * m_hash.cells_of_box(lo, hi), 0x1p53));
-        return true;
-      },
-      pool);
+  const auto box_of = [&](std::size_t i, Vec3& lo, Vec3& hi, std::uint32_t& item) {
+    const std::size_t k = body_at(first, i);
+    const std::int32_t body = bodies[k];
+    const auto triangle = static_cast<std::int32_t>(i - first[k]);
+    triangle_box(world, body, triangle, lo, hi);
+    item = m_offset[static_cast<std::size_t>(body)] + static_cast<std::uint32_t>(triangle);
+    // An absurd box throws in the insertion that follows; its work is never read.
+    const double cells = std::min(m_hash.cells_of_box(lo, hi), 0x1p53);
+    work[i] = work::kCellInsert * static_cast<std::uint64_t>(cells);
+    return true;
+  };
+  m_hash.insert_all_and_build(first.back(), box_of, pool);
+}
+
+double SurfaceHash::work_of_all(const World& world, const std::vector<std::int32_t>& bodies, WorkerPool& pool) const {
+  const std::vector<std::size_t> first = walk_starts(world, bodies);
+  std::vector<double> part_work(static_cast<std::size_t>(pool.threads()), 0.0);
+  pool.for_ranges(first.back(), [&](int part, std::size_t begin, std::size_t end) {
+    double sum = 0.0;
+    for (std::size_t i = begin, k = body_at(first, begin); i < end; ++i) {
+      while (i >= first[k + 1]) ++k;
+      sum += triangle_work(world, bodies[k], static_cast<std::int32_t>(i - first[k]));
+    }
+    part_work[static_cast<std::size_t>(part)] = sum;
+  });
+  double total = 0.0;
+  for (const double w : part_work) total += w;
+  return total;
 }
 
 std::uint64_t border_edge_crossing(const World& world, const Contact& c, std::int32_t q_vertex,

@@ -47,6 +47,11 @@ class SurfaceHash {
   /// after begin_epoch(). work[i] receives the i-th triangle's work units.
   void hash_all(const World& world, const std::vector<std::int32_t>& bodies, WorkerPool& pool,
                 std::vector<std::uint64_t>& work);
+  /// The work hash_all() would charge for `bodies` now (summed on the pool;
+  /// exact: integers below 2^53), hashing nothing.
+  double work_of_all(const World& world, const std::vector<std::int32_t>& bodies, WorkerPool& pool) const;
+  /// The triangles of `bodies` (the walk's length): each costs at least one unit.
+  static std::size_t triangle_count(const World& world, const std::vector<std::int32_t>& bodies);
   /// After the last triangle: makes the hash queryable.
   void build() { m_hash.build(); }
   /// build() in pieces (SpatialHash::begin_build, build_some).
@@ -76,6 +81,10 @@ class SurfaceHash {
 
  private:
   void triangle_box(const World& world, std::int32_t body, std::int32_t triangle, Vec3& lo, Vec3& hi) const;
+  /// first[k]: the walk index of bodies[k]'s first triangle; first.back() the walk's length.
+  static std::vector<std::size_t> walk_starts(const World& world, const std::vector<std::int32_t>& bodies);
+  /// The k with first[k] <= i < first[k + 1].
+  static std::size_t body_at(const std::vector<std::size_t>& first, std::size_t i);
   SpatialHash m_hash;
   std::vector<std::uint32_t> m_offset;
   std::vector<std::int32_t> m_owner;

@@ -336,7 +336,7 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
             m_step_costs.work_of(task_stage) += m_surface_work[i];
             ++m_tasks;
           }
-          work = m_surface_work.empty() ? 0 : m_surface_work.back();
+          work = m_surface_work.back();  // not empty: some body with a surface is listed
           m_surface_body = m_surface_bodies.size();
           enter(Stage::BorderDepth, world);
           break;
@@ -489,27 +489,14 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
 bool CollisionCycle::surface_fits(const World& world, const Budget& budget) const {
   // Unlimited: it fits. A work budget: when the stage's work leaves the
   // budget unspent, so no poll among its tasks (nor the build's, under fine
-  // tasks) would stop it; the sum is counted on the threads first. A wall
+  // tasks) would stop it; each triangle costs at least a unit, so with no
+  // more units left than triangles it cannot, and nothing is summed. A wall
   // budget: which task it stops at is not known ahead, so one a task.
   if (budget.kind() == BudgetKind::None) return true;
   if (budget.kind() != BudgetKind::Work) return false;
-  const auto threads = static_cast<std::size_t>(m_pool->threads());
-  std::vector<double> part_work(threads, 0.0);
-  std::vector<std::size_t> first(m_surface_bodies.size() + 1, 0);
-  for (std::size_t k = 0; k < m_surface_bodies.size(); ++k)
-    first[k + 1] = first[k] + world.bodies[static_cast<std::size_t>(m_surface_bodies[k])].mesh->surface.size();
-  m_pool->for_ranges(first.back(), [&](int part, std::size_t begin, std::size_t end) {
-    double sum = 0.0;
-    std::size_t k = static_cast<std::size_t>(std::upper_bound(first.begin() + 1, first.end(), begin) - (first.begin() + 1));
-    for (std::size_t i = begin; i < end; ++i) {
-      while (i >= first[k + 1]) ++k;
-      sum += m_surface.triangle_work(world, m_surface_bodies[k], static_cast<std::int32_t>(i - first[k]));
-    }
-    part_work[static_cast<std::size_t>(part)] = sum;
-  });
-  double total = static_cast<double>(budget.spent());
-  for (double w : part_work) total += w;
-  return total < budget.limit();
+  const double left = budget.limit() - static_cast<double>(budget.spent());
+  if (left <= static_cast<double>(SurfaceHash::triangle_count(world, m_surface_bodies))) return false;
+  return m_surface.work_of_all(world, m_surface_bodies, *m_pool) < left;
 }
 
 bool CollisionCycle::batch_holds(const World& world) const {

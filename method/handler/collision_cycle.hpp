@@ -215,6 +215,10 @@ class CollisionCycle {
   const CollisionSettings& settings() const { return m_settings; }
   /// Progress, for schedules and tests: tasks run in this cycle, points
   /// queried, and how many contacts (a prefix of contacts()) have their force.
+  /// Tasks run since begin(). With threads, under fine tasks, a surface hash
+  /// run as a whole on the pool skips the uncharged BuildSurfaceHash tasks,
+  /// so the count (not the work, nor where budgets stop) depends on the
+  /// thread count.
   std::int64_t tasks_done() const { return m_tasks; }
   /// How many surface hashes ran on the threads as a whole (see above).
   std::int64_t parallel_surface_hashes() const { return m_parallel_surface_hashes; }
@@ -239,7 +243,8 @@ class CollisionCycle {
   void start_layer_scan();
   bool scan_layer_some(const World& world, std::size_t max_contacts);
   bool batch_holds(const World& world) const;
-  /// Whether the whole HashSurface stage may run on the pool now (see above).
+  /// Whether the whole HashSurface stage may run on the pool now (see
+  /// above); only with a pool (m_pool), at the stage's start.
   bool surface_fits(const World& world, const Budget& budget) const;
   void query_batch(const World& world, const Budget& budget);
   std::size_t batch_size(std::size_t remaining, const Budget& budget) const;

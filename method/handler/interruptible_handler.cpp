@@ -1,7 +1,6 @@
 #include "method/handler/interruptible_handler.hpp"
 
 #include <algorithm>
-#include <iterator>
 
 #include "method/handler/heap_bytes.hpp"
 #include "method/response/penalty_response.hpp"

@@ -138,7 +138,7 @@ class InterruptibleHandler final : public CycleHandler {
   /// A point with a history. The entries are dense, in ascending point
   /// order, so the loop that applies the stale forces of points the cycle has
   /// not reached reads them in one sweep instead of one per-vertex record
-  /// (240 bytes) scattered over the body: that loop runs in every
+  /// (sizeof(ForceHistory): 240 bytes on x86-64) scattered over the body: that loop runs in every
   /// step of a cycle, after the dynamics have evicted the caches.
   struct HistoryEntry {
     Point point;

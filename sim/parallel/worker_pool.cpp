@@ -91,6 +91,7 @@ void WorkerPool::for_chunks(std::size_t n, std::size_t chunk, const RangeFunctio
       } catch (...) {
         failed_chunk[p] = c;
         failed[p] = std::current_exception();
+        next = chunks;  // start no new chunk: every chunk below c is already taken
         return;
       }
     }

@@ -45,9 +45,11 @@ class WorkerPool {
   /// for loops whose items differ in cost (a colliding point costs far more
   /// than a free one), where static ranges leave one thread idle. `part`
   /// names the calling thread (for its scratch), not a fixed range, so f must
-  /// write its results per index. An exception is rethrown after all threads
-  /// stopped: the one of the lowest chunk, i.e. the one a serial loop over
-  /// [0, n) would have met first (a thread stops at its first).
+  /// write its results per index. chunk >= 1 (else std::invalid_argument).
+  /// An exception is rethrown after all threads stopped: the one of the
+  /// lowest chunk, i.e. the one a serial loop over [0, n) would have met
+  /// first. After a failure no new chunk is started; chunks already taken
+  /// run to their end (or their own exception).
   void for_chunks(std::size_t n, std::size_t chunk, const RangeFunction& f);
 
   /// [begin, end) of `part` when n indices are split over `parts` (exposed for tests).

@@ -172,7 +172,7 @@ TEST_CASE("the surface hash on threads is charged as one triangle a task, and ru
   // triangle a task. Every call's stage, work, largest charge and outcome,
   // and every contact, must be one thread's, both under the paper's tasks
   // and under fine tasks (whose table builds then run at once).
-  std::int64_t parallel = 0, serial_with_pool = 0;
+  std::int64_t parallel[2] = {0, 0}, serial_with_pool[2] = {0, 0};  // [fine]
   for (const auto& [name, scene] : test::collision_scenes())
     for (const bool fine : {false, true})
       for (const std::uint64_t units : {std::uint64_t{30}, std::uint64_t{700}, std::uint64_t{20000}}) {
@@ -201,13 +201,16 @@ TEST_CASE("the surface hash on threads is charged as one triangle a task, and ru
           } else {
             CHECK(trace == serial_trace);
             CHECK(same_contacts(cycle.contacts(), serial_contacts));
-            parallel += cycle.parallel_surface_hashes();
-            serial_with_pool += cycle.parallel_surface_hashes() == 0 && !serial_contacts.empty();
+            parallel[fine] += cycle.parallel_surface_hashes();
+            serial_with_pool[fine] += cycle.parallel_surface_hashes() == 0 && !serial_contacts.empty();
           }
         }
       }
-  CHECK(parallel > 0);          // some budgets afforded the whole stage
-  CHECK(serial_with_pool > 0);  // and some did not
+  for (const int fine : {0, 1}) {
+    INFO((fine ? "fine tasks" : "paper's tasks"));
+    CHECK(parallel[fine] > 0);          // some budgets afforded the whole stage
+    CHECK(serial_with_pool[fine] > 0);  // and some did not
+  }
 }
 
 TEST_CASE("threads change nothing when a cycle spans moving steps and re-detects its points", "[cycle][threads]") {

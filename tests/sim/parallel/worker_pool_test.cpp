@@ -71,18 +71,28 @@ TEST_CASE("worker pool chunks cover every index once, each chunk whole, and reth
     WorkerPool pool(threads);
     for (std::size_t chunk : {1, 5, 16})
       for (std::size_t n : {0, 1, 15, 16, 17, 1000}) {
-        std::vector<int> hits(n, 0);
+        // Recorded on the threads (one slot an index), checked afterwards:
+        // Catch's assertions are not thread-safe.
+        std::vector<int> hits(n, 0), part_of(n, -1);
+        std::vector<std::size_t> begin_of(n, 0), end_of(n, 0);
         std::atomic<int> calls{0};
         pool.for_chunks(n, chunk, [&](int part, std::size_t begin, std::size_t end) {
-          REQUIRE(part >= 0);
-          REQUIRE(part < threads);
-          // A chunk is [c * chunk, min(n, (c + 1) * chunk)).
-          REQUIRE(begin % chunk == 0);
-          REQUIRE(end == std::min(n, begin + chunk));
           ++calls;
-          for (std::size_t i = begin; i < end; ++i) ++hits[i];
+          for (std::size_t i = begin; i < end; ++i) {
+            ++hits[i];
+            part_of[i] = part;
+            begin_of[i] = begin;
+            end_of[i] = end;
+          }
         });
-        for (int h : hits) REQUIRE(h == 1);
+        for (std::size_t i = 0; i < n; ++i) {
+          REQUIRE(hits[i] == 1);
+          REQUIRE(part_of[i] >= 0);
+          REQUIRE(part_of[i] < threads);
+          // Index i's chunk is [c * chunk, min(n, (c + 1) * chunk)), c = i / chunk.
+          REQUIRE(begin_of[i] == i / chunk * chunk);
+          REQUIRE(end_of[i] == std::min(n, begin_of[i] + chunk));
+        }
         REQUIRE(static_cast<std::size_t>(calls) == (n + chunk - 1) / chunk);
       }
     // Indices 40 and 95 fail; a serial loop meets 40 first, whichever thread
