@@ -518,7 +518,7 @@ std::size_t CollisionCycle::batch_size(std::size_t remaining, const Budget& budg
     // when none are left: a step always runs a task). Answers beyond that
     // would be dropped unread.
     const double left = std::ceil(budget.limit() - static_cast<double>(budget.spent()));
-    size = std::min(size, left >= 1.0 ? static_cast<std::size_t>(std::min(left, static_cast<double>(size))) : 1);
+    size = left >= 1.0 ? static_cast<std::size_t>(std::min(left, static_cast<double>(size))) : 1;
   } else if (budget.kind() == BudgetKind::WallMs) {
     // The whole batch falls in one task, between two polls: sized to the
     // time left at what this stage's recent batches took per item (a few a

@@ -10,6 +10,7 @@
 
 #include "experiments/cli/cli.hpp"
 #include "sim/io/atomic_file.hpp"
+#include "tests/remove_on_exit.hpp"
 #include "sim/io/input_error.hpp"
 
 using namespace tcb;
@@ -61,14 +62,6 @@ fs::path thresholds(const std::string& text) {
   return thresholds_path();
 }
 
-// Removes the thresholds file when a test case ends, passed or failed (the
-// file used to be left in the temporary directory after every run).
-struct RemoveThresholdsFile {
-  ~RemoveThresholdsFile() {
-    std::error_code ignored;  // a destructor must not throw, least of all while a failed REQUIRE unwinds
-    fs::remove(thresholds_path(), ignored);
-  }
-};
 
 int cli(const std::vector<std::string>& args) {
   std::vector<const char*> argv{"tcbench"};
@@ -79,7 +72,7 @@ int cli(const std::vector<std::string>& args) {
 }  // namespace
 
 TEST_CASE("check passes, fails and reports missing runs and metrics", "[check]") {
-  const RemoveThresholdsFile cleanup;
+  const test::RemoveOnExit cleanup{thresholds_path()};  // passed or failed
   const fs::path dir = fixture();
   const fs::path pass = thresholds(R"([[threshold]]
 scene = "plates20"
@@ -163,7 +156,7 @@ min = 0.5
 }
 
 TEST_CASE("check filters by response mode and bounds ratios to a reference run", "[check]") {
-  const RemoveThresholdsFile cleanup;
+  const test::RemoveOnExit cleanup{thresholds_path()};  // passed or failed
   const fs::path dir = fs::temp_directory_path() / ("tcbench_check_rel_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   const auto run = [&](const std::string& name, const std::string& method, const std::string& budget,
@@ -228,7 +221,7 @@ max = 2.0
 }
 
 TEST_CASE("a wall-clock threshold on a noisy run is inconclusive: exit 4, or 1 with --strict-timing", "[check]") {
-  const RemoveThresholdsFile cleanup;
+  const test::RemoveOnExit cleanup{thresholds_path()};  // passed or failed
   const fs::path dir = fs::temp_directory_path() / ("tcbench_check_noisy_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   const auto run = [&](const std::string& name, const std::string& kind, const std::string& verdict,
@@ -287,7 +280,7 @@ min = 0.5
 }
 
 TEST_CASE("check rejects malformed thresholds files with exit 2, naming file and line", "[check]") {
-  const RemoveThresholdsFile cleanup;
+  const test::RemoveOnExit cleanup{thresholds_path()};  // passed or failed
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"[[threshold]]\nscene = \"plates20\"\nmethod = \"full\"\nmetric = \"recall_min\"\n", ":1: threshold: give min"},
       {"[[threshold]]\nscene = \"plates20\"\nmethod = \"full\"\nmetric = \"recall_min\"\nmin = \"high\"\n", ":5: threshold.min"},
@@ -313,7 +306,7 @@ TEST_CASE("check rejects malformed thresholds files with exit 2, naming file and
 
 TEST_CASE("check: a threshold may state a run's status and reason, and pick runs by their --set overrides",
           "[check]") {
-  const RemoveThresholdsFile cleanup;
+  const test::RemoveOnExit cleanup{thresholds_path()};  // passed or failed
   const fs::path dir = fs::temp_directory_path() / ("tcbench_check_status_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   const auto run = [&](const std::string& name, const std::vector<std::string>& sets, const std::string& status,

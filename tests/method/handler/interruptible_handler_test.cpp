@@ -67,6 +67,13 @@ std::unique_ptr<CollisionHandler> with_apply_first(const char* name, bool apply_
   return handler;
 }
 
+// Every field of two links equal, bit for bit.
+bool same_link(const ContactLink& x, const ContactLink& y) {
+  return x.point_body == y.point_body && x.vertex == y.vertex && x.tet_body == y.tet_body &&
+         x.tet_vertices == y.tet_vertices && x.weights == y.weights && x.normal == y.normal && x.depth_m == y.depth_m &&
+         x.stiffness_n_per_m == y.stiffness_n_per_m && x.damping_n_s_per_m == y.damping_n_s_per_m;
+}
+
 }  // namespace
 
 TEST_CASE("interruptible: the budget stops after exactly k tasks and resumes at k+1", "[interruptible]") {
@@ -131,13 +138,8 @@ TEST_CASE("interruptible: a budget far larger than needed behaves like full", "[
 TEST_CASE("interruptible with no budget gives full's forces bit for bit, in both response modes", "[interruptible]") {
   const auto same_links = [](const World& a, const World& b) {
     if (a.contact_links.size() != b.contact_links.size()) return false;
-    for (std::size_t i = 0; i < a.contact_links.size(); ++i) {
-      const ContactLink &x = a.contact_links[i], &y = b.contact_links[i];
-      if (x.point_body != y.point_body || x.vertex != y.vertex || x.tet_body != y.tet_body ||
-          x.tet_vertices != y.tet_vertices || x.weights != y.weights || x.normal != y.normal || x.depth_m != y.depth_m ||
-          x.stiffness_n_per_m != y.stiffness_n_per_m || x.damping_n_s_per_m != y.damping_n_s_per_m)
-        return false;
-    }
+    for (std::size_t i = 0; i < a.contact_links.size(); ++i)
+      if (!same_link(a.contact_links[i], b.contact_links[i])) return false;
     return true;
   };
   for (const ResponseMode mode : {ResponseMode::Explicit, ResponseMode::Implicit})
@@ -368,13 +370,8 @@ bool same_forces(const AppliedForces& a, const AppliedForces& b) {
   if (a.contact_force_n != b.contact_force_n || a.links.size() != b.links.size() || a.exact != b.exact ||
       a.estimated != b.estimated)
     return false;
-  for (std::size_t i = 0; i < a.links.size(); ++i) {
-    const ContactLink &x = a.links[i], &y = b.links[i];
-    if (x.point_body != y.point_body || x.vertex != y.vertex || x.tet_body != y.tet_body ||
-        x.tet_vertices != y.tet_vertices || x.weights != y.weights || x.normal != y.normal || x.depth_m != y.depth_m ||
-        x.stiffness_n_per_m != y.stiffness_n_per_m || x.damping_n_s_per_m != y.damping_n_s_per_m)
-      return false;
-  }
+  for (std::size_t i = 0; i < a.links.size(); ++i)
+    if (!same_link(a.links[i], b.links[i])) return false;
   return true;
 }
 

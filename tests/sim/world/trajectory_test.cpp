@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include "sim/io/atomic_file.hpp"
+#include "tests/remove_on_exit.hpp"
 #include "sim/io/input_error.hpp"
 #include "sim/world/world_desc.hpp"
 
@@ -20,19 +21,11 @@ fs::path write_csv(const std::string& text) {
   return csv_path();
 }
 
-// Removes the trajectory file when a test case ends, passed or failed (it
-// used to be left in the temporary directory after every run).
-struct RemoveCsv {
-  ~RemoveCsv() {
-    std::error_code ignored;  // a destructor must not throw, least of all while a failed REQUIRE unwinds
-    fs::remove(csv_path(), ignored);
-  }
-};
 
 }  // namespace
 
 TEST_CASE("trajectory: linear between samples, held outside them", "[trajectory]") {
-  const RemoveCsv cleanup;
+  const test::RemoveOnExit cleanup{csv_path()};  // passed or failed
   const Trajectory t = read_trajectory_csv(write_csv("time_s,x_m,y_m,z_m\n0,0,1,0\n0.5,1,1,0\n1.0,1,0,2\n"));
   CHECK(t.at(-1.0) == Vec3(0, 1, 0));
   CHECK(t.at(0.25).isApprox(Vec3(0.5, 1, 0)));
@@ -42,7 +35,7 @@ TEST_CASE("trajectory: linear between samples, held outside them", "[trajectory]
 }
 
 TEST_CASE("trajectory: malformed files name the file and the line", "[trajectory]") {
-  const RemoveCsv cleanup;
+  const test::RemoveOnExit cleanup{csv_path()};  // passed or failed
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"t,x,y,z\n0,0,0,0\n", ":1: expected the header"},
       {"time_s,x_m,y_m,z_m\n0,0,0\n", ":2: expected 4 values"},
@@ -60,7 +53,7 @@ TEST_CASE("trajectory: malformed files name the file and the line", "[trajectory
 }
 
 TEST_CASE("a driven body follows its trajectory with the velocity of that motion, never integrated", "[trajectory]") {
-  const RemoveCsv cleanup;
+  const test::RemoveOnExit cleanup{csv_path()};  // passed or failed
   WorldDesc scene;
   ObjectDesc probe;
   probe.name = "probe";
