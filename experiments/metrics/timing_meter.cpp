@@ -1,7 +1,9 @@
 #include "experiments/metrics/timing_meter.hpp"
 
+#include "experiments/metrics/distribution.hpp"
 #include "experiments/metrics/timing_quality.hpp"
 #include "experiments/run/thread_clock.hpp"
+#include "experiments/run/timing_floor.hpp"
 
 namespace tcb {
 
@@ -12,7 +14,18 @@ void TimingMeter::on_step(StepContext& ctx) {
   m_switches += ctx.handling_switches;
   const double base = m_budget.kind == BudgetKind::WallMs && m_budget.value > 0.0 ? m_budget.value : ctx.handling_ms;
   if (is_preempted(ctx.handling_ms, ctx.handling_cpu_ms, base)) ++m_preempted;
+  if (m_budget.kind == BudgetKind::WallMs && m_budget.value > 0.0 && m_budget.value <= kFloorMaxWindowMs)
+    m_floor_overshoot_ms.push_back(null_handler_overshoot_ms(m_budget.value));
 }
+
+namespace {
+
+// {p50, p99, max} of scale * value.
+Meter::Json tail_json(const Distribution& d, double scale) {
+  return {{"p50", scale * d.p50}, {"p99", scale * d.p99}, {"max", scale * d.max}};
+}
+
+}  // namespace
 
 void TimingMeter::summarize(Json& summary) const {
   const MachineSample end = sample_machine();
@@ -26,6 +39,13 @@ void TimingMeter::summarize(Json& summary) const {
   e.pinned_cpu = pinned_cpu();
   const TimingVerdict v = timing_verdict(e);
   const auto opt = [](const auto& o) { return o ? Json(*o) : Json(nullptr); };
+  Json floor(nullptr);
+  if (!m_floor_overshoot_ms.empty()) {
+    const Distribution d = tcb::summarize(m_floor_overshoot_ms);
+    floor = {{"windows", m_floor_overshoot_ms.size()},
+             {"overshoot_us", tail_json(d, 1000.0)},
+             {"overshoot_pct", tail_json(d, 100.0 / m_budget.value)}};
+  }
   summary["timing"] = {
       {"verdict", v.noisy ? "noisy" : "quiet"},
       {"reasons", v.reasons},
@@ -38,7 +58,8 @@ void TimingMeter::summarize(Json& summary) const {
       {"cpus", e.cpus},
       {"loadavg_1min", {{"start", opt(m_start.loadavg_1min)}, {"end", opt(end.loadavg_1min)}}},
       {"governor", opt(e.governor)},
-      {"pinned_cpu", opt(e.pinned_cpu)}};
+      {"pinned_cpu", opt(e.pinned_cpu)},
+      {"floor", floor}};
 }
 
 }  // namespace tcb

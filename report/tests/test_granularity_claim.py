@@ -10,10 +10,12 @@ from tcbench_report.claims import FAILS, HOLDS, INCONCLUSIVE, worst_overshoot  #
 from tcbench_report.loader import Run  # noqa: E402
 
 
-def run(name, wall_p99, cpu_p99, verdict):
+def run(name, wall_p99, cpu_p99, verdict, floor_p99=None):
     summary = {"overshoot_pct": {"p99": wall_p99}, "overshoot_cpu_pct": {"p99": cpu_p99}}
     if verdict:
         summary["timing"] = {"verdict": verdict}
+        if floor_p99 is not None:
+            summary["timing"]["floor"] = {"windows": 300, "overshoot_pct": {"p99": floor_p99}}
     return Run("/nonexistent", {"summary": summary, "budget": {"kind": "wall_ms"}}, name)
 
 
@@ -46,6 +48,34 @@ class GranularityClaim(unittest.TestCase):
     def test_runs_before_the_verdict_are_judged_as_before(self):
         _, verdict = worst_overshoot([run("old", 4.0, None, None)], None)
         self.assertEqual(verdict, HOLDS)
+
+    def test_a_run_within_its_machine_floor_is_inconclusive(self):
+        # The null handler beside it overshot 14 % by itself; the run's 12 % shows neither a hold nor a miss.
+        measured, verdict = worst_overshoot([run("haptic", 12.0, 9.0, "quiet", floor_p99=14.0)], None)
+        self.assertTrue(verdict.startswith(INCONCLUSIVE), verdict)
+        self.assertIn("14.0 %", verdict)
+        self.assertIn("machine floor p99 up to 14.0 %", measured)
+
+    def test_a_run_above_floor_plus_threshold_fails_whatever_the_floor(self):
+        # 1040 % over a 6 % floor: the method's own part exceeds 5 % even crediting the whole floor.
+        _, verdict = worst_overshoot([run("paper", 1040.0, 1000.0, "quiet", floor_p99=6.0)], None)
+        self.assertEqual(verdict, FAILS)
+        # Just past floor + threshold fails; just within it does not decide.
+        self.assertEqual(worst_overshoot([run("x", 11.5, 11.0, "quiet", floor_p99=6.0)], None)[1], FAILS)
+        self.assertTrue(worst_overshoot([run("x", 10.5, 10.0, "quiet", floor_p99=6.0)], None)[1]
+                        .startswith(INCONCLUSIVE))
+
+    def test_a_floor_below_the_threshold_changes_nothing(self):
+        _, verdict = worst_overshoot([run("a", 7.0, 6.5, "quiet", floor_p99=0.5)], None)
+        self.assertEqual(verdict, FAILS)
+        _, verdict = worst_overshoot([run("a", 3.0, 2.9, "quiet", floor_p99=0.5)], None)
+        self.assertEqual(verdict, HOLDS)
+
+    def test_the_runs_the_machine_could_judge_decide(self):
+        _, verdict = worst_overshoot([run("a", 3.0, 2.9, "quiet", floor_p99=0.5),
+                                      run("b", 9.0, 8.0, "quiet", floor_p99=7.0)], None)
+        self.assertTrue(verdict.startswith(HOLDS), verdict)
+        self.assertIn(f"1 run {INCONCLUSIVE} (machine floor", verdict)
 
 
 if __name__ == "__main__":

@@ -47,6 +47,14 @@ def draw(ctx, runs):
                     for i, median, lo, hi in points:
                         if lo is not None:
                             ax.errorbar(i, median, yerr=[[median - lo], [hi - median]], color="0.3", lw=0.7)
+        if key == "overshoot_pct":
+            # The machine's own floor beside each run: a null handler's overshoot p99 over as many windows of
+            # the budget's length (summary.timing.floor); runs recorded before it have none.
+            floors = [(i, statistics.median(values)) for i, g in zip(x, groups)
+                      if (values := [v for m in g if (v := m.metric("timing.floor.overshoot_pct.p99")) is not None])]
+            if floors:
+                ax.scatter([f[0] for f in floors], [f[1] for f in floors], marker="_", s=120, color="0.4",
+                           label="machine floor p99 (null handler)")
         ax.axhline(OVERSHOOT_PCT, color="k", ls="--", lw=0.8, label=f"{PAPER}: < {OVERSHOOT_PCT:g} %")
         ax.set_xticks(x, labels, fontsize=6, rotation=60, ha="right")
         for tick, noisy in zip(ax.get_xticklabels(), noisy_group):
@@ -61,7 +69,10 @@ def draw(ctx, runs):
     return ctx.save(fig, FILE, TITLE,
                     "How far handling time overshoots the wall-clock budget: the p50 (median), p99 and max over all "
                     "steps of each run (summary overshoot_pct, overshoot_cpu_pct), on the wall clock (left) and "
-                    "in the handling thread's CPU time (right). Runs marked [noisy] "
+                    "in the handling thread's CPU time (right). The grey dash is the machine's floor: the p99 "
+                    "overshoot of a null handler that only polls the clock, spun for one window of the budget "
+                    "after each step of the run (summary.timing.floor); a run near it overshoots what any method "
+                    "would here. Runs marked [noisy] "
                     f"(red; {noisy} of {len(all_runs)} runs) ran on a busy machine (summary.timing): their wall overshoot is "
                     "partly the scheduler's.",
                     runs)

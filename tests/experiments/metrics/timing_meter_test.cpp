@@ -69,6 +69,16 @@ TEST_CASE("a step that lost more than 1 % of the wall budget to preemption is co
   CHECK(s["overshoot_pct"]["max"].get<double>() == Approx(100.0));
   CHECK(s["overshoot_cpu_pct"]["max"].get<double>() == Approx(0.0).margin(1e-12));
   CHECK(s["handling_cpu_ms"]["max"].get<double>() == Approx(4.0));
+  // One null-handler window of the budget's length a step: the machine's floor.
+  CHECK(s["timing"]["floor"]["windows"] == 4);
+  CHECK(s["timing"]["floor"]["overshoot_us"]["p99"].get<double>() >= 0.0);
+  CHECK(s["timing"]["floor"]["overshoot_pct"]["max"].get<double>() ==
+        Approx(s["timing"]["floor"]["overshoot_us"]["max"].get<double>() / 40.0));  // 1 % of 4 ms is 40 us
+}
+
+TEST_CASE("no floor is spun above kFloorMaxWindowMs", "[timing]") {
+  const auto s = measure(BudgetSpec{BudgetKind::WallMs, 2.0 * kFloorMaxWindowMs}, {{1.0, 1.0, 0}});
+  CHECK(s["timing"]["floor"].is_null());
 }
 
 TEST_CASE("without a wall budget a step's base is its own wall time; overshoot stays null", "[timing]") {
@@ -77,4 +87,5 @@ TEST_CASE("without a wall budget a step's base is its own wall time; overshoot s
   CHECK(s["timing"]["preempted_steps"] == 1);
   CHECK(s["overshoot_pct"].is_null());
   CHECK(s["overshoot_cpu_pct"].is_null());
+  CHECK(s["timing"]["floor"].is_null());
 }
