@@ -75,27 +75,27 @@ std::size_t SpatialHash::insert_box(const Vec3& lo, const Vec3& hi, std::uint32_
   });
 }
 
-void SpatialHash::build_parallel(WorkerPool& pool) {
-  // The serial build's counting sort, per part on its own buckets: count
+void SpatialHash::build_parallel(WorkerPool& pool, std::size_t owners) {
+  // The serial build's counting sort, per owner on its own buckets: count
   // (noting buckets in first-met order), give each bucket its range after
-  // the ranges of lower parts, then fill the ranges from the back reading
+  // the ranges of lower owners, then fill the ranges from the back reading
   // entries backwards (a bucket's start ends where its range starts, and its
   // items stay in insertion order).
   const std::size_t parts = static_cast<std::size_t>(pool.threads());
-  std::vector<std::size_t> first(parts + 1, 0);  // part q's ranges start at first[q]
-  for (std::size_t q = 0; q < parts; ++q) {
+  std::vector<std::size_t> first(owners + 1, 0);  // owner q's ranges start at first[q]
+  for (std::size_t q = 0; q < owners; ++q) {
     first[q + 1] = first[q];
-    for (std::size_t p = 0; p < parts; ++p) first[q + 1] += m_part_entries[p * parts + q].size();
+    for (std::size_t p = 0; p < parts; ++p) first[q + 1] += m_part_entries[p * owners + q].size();
   }
-  m_sorted.resize(first[parts]);
+  m_sorted.resize(first[owners]);
   m_built_in_parts = true;
   m_part_touched.resize(parts);
-  pool.for_ranges(parts, [&](int, std::size_t begin, std::size_t end) {
+  pool.for_ranges(owners, [&](int part, std::size_t begin, std::size_t end) {
+    std::vector<std::uint32_t>& touched = m_part_touched[static_cast<std::size_t>(part)];
     for (std::size_t q = begin; q < end; ++q) {
-      std::vector<std::uint32_t>& touched = m_part_touched[q];
       touched.clear();
       for (std::size_t p = 0; p < parts; ++p)
-        for (const Entry& e : m_part_entries[p * parts + q])
+        for (const Entry& e : m_part_entries[p * owners + q])
           if (count_entry(e.bucket)) touched.push_back(e.bucket);
       auto cursor = static_cast<std::uint32_t>(first[q]);
       for (std::uint32_t b : touched) {
@@ -103,7 +103,7 @@ void SpatialHash::build_parallel(WorkerPool& pool) {
         m_buckets[b].start = cursor;  // the range's end, until filled
       }
       for (std::size_t p = parts; p-- > 0;) {
-        const std::vector<Entry>& list = m_part_entries[p * parts + q];
+        const std::vector<Entry>& list = m_part_entries[p * owners + q];
         for (auto e = list.rbegin(); e != list.rend(); ++e) m_sorted[--m_buckets[e->bucket].start] = e->item;
       }
     }

@@ -28,6 +28,7 @@
 /// either the cell size is far too small for the elements, or the simulation
 /// has diverged and an element has been stretched across the scene.
 
+#include <algorithm>
 #include <cstdint>
 #include <stdexcept>
 #include <vector>
@@ -80,15 +81,25 @@ class SpatialHash {
   /// to skip it. The table is exactly the serial one: the same items in every
   /// bucket, in insertion order (only where each bucket's range sits in the
   /// sorted array differs, which no query sees). Returns the cells inserted.
-  /// Each part owns a contiguous range of buckets; a part computes its
-  /// boxes' cells and buckets into one list per owner (in order), then each
-  /// part counts, places and fills its own buckets from the lists meant for
-  /// it, read in part order, so no two threads write one bucket. box_of runs
-  /// concurrently on disjoint i.
+  /// Each thread takes a contiguous range of boxes and computes their cells'
+  /// buckets into one list per owner (in order); an owner is a contiguous
+  /// range of at most `buckets_per_owner` buckets, and there are at least as
+  /// many owners as threads. Then each owner's buckets are counted, placed
+  /// and filled from the lists meant for it, read in thread order, so no two
+  /// threads write one bucket. Small owners keep the build's random accesses
+  /// to the buckets and the sorted items in a core's cache, which is why a
+  /// pool of one thread builds this way too (the serial insert_box() and
+  /// build() touch the whole table for every entry). box_of runs concurrently
+  /// on disjoint i.
   /// A HashOverflow is thrown for the first offending box, as serially.
   /// Call it on an empty table (right after begin_epoch()).
   template <typename BoxOf>
-  std::size_t insert_all_and_build(std::size_t n, BoxOf&& box_of, WorkerPool& pool);
+  std::size_t insert_all_and_build(std::size_t n, BoxOf&& box_of, WorkerPool& pool,
+                                   std::size_t buckets_per_owner = kBucketsPerOwner);
+
+  /// 16384 buckets of 12 bytes: 192 KiB, within a core's L2 beside the
+  /// owner's slice of the sorted items.
+  static constexpr std::size_t kBucketsPerOwner = 16384;
 
   /// Calls f(item) for every entry of the bucket of point p's cell.
   template <typename F>
@@ -144,11 +155,11 @@ class SpatialHash {
     ++bucket.count;
     return first;
   }
-  /// The part of `parts` that owns bucket b: contiguous ranges of buckets.
-  std::size_t owner_part(std::size_t b, std::size_t parts) const { return b * parts / m_buckets.size(); }
-  /// insert_all_and_build()'s second half: each part counts, places and
-  /// fills its own buckets from m_part_entries.
-  void build_parallel(WorkerPool& pool);
+  /// The owner of `owners` that owns bucket b: contiguous ranges of buckets.
+  std::size_t owner_of(std::size_t b, std::size_t owners) const { return b * owners / m_buckets.size(); }
+  /// insert_all_and_build()'s second half: each owner's buckets are counted,
+  /// placed and filled from m_part_entries, owners spread over the threads.
+  void build_parallel(WorkerPool& pool, std::size_t owners);
   std::size_t bucket_of(std::int64_t i, std::int64_t j, std::int64_t k) const {
     return static_cast<std::size_t>(hash_cell(m_function, i, j, k) % m_buckets.size());
   }
@@ -175,11 +186,11 @@ class SpatialHash {
   std::uint32_t m_epoch = 1;
   std::vector<Entry> m_entries;   // in insertion order
   std::vector<std::uint32_t> m_sorted;  // items grouped by bucket (after build)
-  // insert_all_and_build()'s lists: [p * parts + q] holds the entries part p
-  // made for the buckets part q owns, in insertion order (kept between
-  // epochs, so they do not regrow).
+  // insert_all_and_build()'s lists: [p * owners + q] holds the entries
+  // thread p made for the buckets owner q owns, in insertion order (kept
+  // between epochs, so they do not regrow).
   std::vector<std::vector<Entry>> m_part_entries;
-  std::vector<std::vector<std::uint32_t>> m_part_touched;  // per part: its buckets, in first-met order
+  std::vector<std::vector<std::uint32_t>> m_part_touched;  // per thread: its owner's buckets, in first-met order
   bool m_built_in_parts = false;  // this epoch's table came from insert_all_and_build() (m_entries is empty)
   int m_build_pass = 3;                 // 0..2 while a build is under way, 3 when built
   std::size_t m_build_cursor = 0;
@@ -187,26 +198,30 @@ class SpatialHash {
 };
 
 template <typename BoxOf>
-std::size_t SpatialHash::insert_all_and_build(std::size_t n, BoxOf&& box_of, WorkerPool& pool) {
+std::size_t SpatialHash::insert_all_and_build(std::size_t n, BoxOf&& box_of, WorkerPool& pool,
+                                              std::size_t buckets_per_owner) {
   if (!m_entries.empty() || m_built_in_parts)
     throw std::logic_error("SpatialHash::insert_all_and_build needs an empty table");
   const std::size_t parts = static_cast<std::size_t>(pool.threads());
-  m_part_entries.resize(parts * parts);
+  const std::size_t owners =
+      std::max(parts, (m_buckets.size() + std::max<std::size_t>(buckets_per_owner, 1) - 1) /
+                          std::max<std::size_t>(buckets_per_owner, 1));
+  m_part_entries.resize(parts * owners);
   // Every list emptied here, not by its part: a part with an empty range
   // never runs, and must not leave last epoch's entries behind.
   for (std::vector<Entry>& list : m_part_entries) list.clear();
   std::vector<std::size_t> cells(parts, 0);
   pool.for_ranges(n, [&](int part, std::size_t begin, std::size_t end) {
     const std::size_t p = static_cast<std::size_t>(part);
-    std::vector<Entry>* lists = &m_part_entries[p * parts];
+    std::vector<Entry>* lists = &m_part_entries[p * owners];
     Vec3 lo, hi;
     std::uint32_t item = 0;
     for (std::size_t i = begin; i < end; ++i) {
       if (!box_of(i, lo, hi, item)) continue;
-      cells[p] += buckets_of_box(lo, hi, [&](std::uint32_t b) { lists[owner_part(b, parts)].push_back({item, b}); });
+      cells[p] += buckets_of_box(lo, hi, [&](std::uint32_t b) { lists[owner_of(b, owners)].push_back({item, b}); });
     }
   });
-  build_parallel(pool);
+  build_parallel(pool, owners);
   std::size_t inserted = 0;
   for (std::size_t c : cells) inserted += c;
   return inserted;

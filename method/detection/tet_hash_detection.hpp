@@ -50,8 +50,9 @@ class TetHashDetector {
   TetHashDetector(const World& world, const DetectionSettings& settings);
 
   /// Stage 1: hashes all tets at the current positions; returns work units.
-  /// With a pool, on its threads (SpatialHash::insert_all_and_build()): the
-  /// same table, stored boxes, work units and errors as without.
+  /// By SpatialHash::insert_all_and_build(), on the pool's threads or without
+  /// one on the caller's: the same table, stored boxes, work units and errors
+  /// on any thread count, and as begin_hash(), hash_some_tets() and a build.
   std::uint64_t hash_tets(const World& world, const CollisionPairs& pairs, WorkerPool* pool = nullptr);
   /// Stage 1 in pieces: begin_hash() empties the table; each hash_some_tets()
   /// hashes the next `max_tets` tets (in hash_tets()'s order) at the current

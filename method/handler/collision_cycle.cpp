@@ -51,7 +51,14 @@ void CollisionCycle::warm_up(const World& world) {
   // nothing of this is seen by the results. A state the hash cannot take is
   // left for the first cycle to report.
   try {
-    m_detector.hash_tets(world, m_pairs);
+    if (m_granularity.fine()) {  // the path the fine tasks take: insert_box() and a build in pieces
+      bool done = false;
+      m_detector.begin_hash();
+      m_detector.hash_some_tets(world, m_pairs, std::numeric_limits<std::size_t>::max(), done);
+      m_detector.mutable_hash().build();
+    } else {
+      m_detector.hash_tets(world, m_pairs, m_pool.get());
+    }
     m_surface.begin_epoch();
     for (std::size_t b = 0; b < world.bodies.size(); ++b) {
       if (!m_pairs.has_partner(b)) continue;

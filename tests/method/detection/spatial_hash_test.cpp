@@ -83,7 +83,9 @@ TEST_CASE("spatial hash: the parallel insert and build make the serial table", "
   // Random boxes (some skipped) in a small table with many bucket collisions,
   // over several epochs of one table: every cell's bucket lists the same
   // items in the same order as after insert_box() one by one and build(),
-  // for 1, 2 and 3 threads (1: the pool runs everything on the caller).
+  // for 1, 2 and 3 threads (1: the pool runs everything on the caller), with
+  // one owner of buckets a thread and with owners of 4 buckets (8 owners of
+  // the 31: more owners than threads, as on tables larger than a cache).
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(-2.0, 2.0), size(0.0, 0.6);
   std::vector<std::pair<Vec3, Vec3>> boxes;
@@ -99,7 +101,8 @@ TEST_CASE("spatial hash: the parallel insert and build make the serial table", "
     for (std::size_t i = 0; i < boxes.size(); ++i)
       if (!skipped(i)) serial_cells += serial.insert_box(boxes[i].first, boxes[i].second, static_cast<std::uint32_t>(i));
     serial.build();
-    for (int threads = 1; threads <= 3; ++threads) {
+    for (int threads = 1; threads <= 3; ++threads)
+    for (const std::size_t per_owner : {SpatialHash::kBucketsPerOwner, std::size_t(4)}) {
       WorkerPool pool(threads);
       SpatialHash parallel(0.25, 31, function);
       for (int epoch = 0; epoch < 3; ++epoch) {  // later epochs start from stale stamps
@@ -111,8 +114,8 @@ TEST_CASE("spatial hash: the parallel insert and build make the serial table", "
               lo = boxes[i].first, hi = boxes[i].second, item = static_cast<std::uint32_t>(i);
               return true;
             },
-            pool);
-        INFO("threads " << threads << ", epoch " << epoch);
+            pool, per_owner);
+        INFO("threads " << threads << ", buckets per owner " << per_owner << ", epoch " << epoch);
         CHECK(cells == serial_cells);
         CHECK(parallel.entry_count() == serial.entry_count());
         CHECK(parallel.occupied_buckets() == serial.occupied_buckets());
