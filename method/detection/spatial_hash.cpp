@@ -10,16 +10,6 @@
 
 namespace tcb {
 
-std::uint64_t hash_cell(HashFunction function, std::int64_t i, std::int64_t j, std::int64_t k) {
-  const auto ui = static_cast<std::uint64_t>(i), uj = static_cast<std::uint64_t>(j),
-             uk = static_cast<std::uint64_t>(k);
-  if (function == HashFunction::Paper) return (ui * 73856093ULL) ^ (uj * 19349663ULL) ^ (uk * 83492791ULL);
-  std::uint64_t z = ui * 0x9E3779B97F4A7C15ULL + uj * 0xC2B2AE3D27D4EB4FULL + uk * 0x165667B19E3779F9ULL;
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-  return z ^ (z >> 31);
-}
-
 std::uint64_t next_prime(std::uint64_t n) {
   if (n <= 2) return 2;
   for (std::uint64_t c = n | 1;; c += 2) {
@@ -35,7 +25,7 @@ std::uint64_t next_prime(std::uint64_t n) {
 
 SpatialHash::SpatialHash(double cell_size_m, std::size_t table_size, HashFunction function)
     : m_cell_size(cell_size_m), m_inverse_cell(1.0 / cell_size_m), m_function(function),
-      m_buckets(std::max<std::size_t>(table_size, 1)) {
+      m_buckets(std::max<std::size_t>(table_size, 1)), m_modulo(m_buckets.size()) {
   if (!(cell_size_m > 0.0) || !std::isfinite(cell_size_m))
     throw std::invalid_argument("spatial hash cell size must be positive and finite");
 }
@@ -48,11 +38,6 @@ void SpatialHash::begin_epoch() {
   }
   m_entries.clear();
   m_built_in_parts = false;
-}
-
-std::int64_t SpatialHash::cell_of(double x) const {
-  constexpr double kLimit = 1125899906842624.0;  // 2^50
-  return static_cast<std::int64_t>(std::clamp(std::floor(x * m_inverse_cell), -kLimit, kLimit));
 }
 
 void SpatialHash::check_box(std::int64_t ni, std::int64_t nj, std::int64_t nk) const {

@@ -11,6 +11,7 @@
 ///   collide, and stacked plates sit exactly there);
 /// - HashFunction::Mixed (default): a multiply-add of the cell indices followed
 ///   by the 64-bit splitmix finaliser, mod n.
+/// (mod n by multiplications, fast_modulo.hpp: exactly %, without a division.)
 /// Buckets are time-stamped: begin_epoch() empties the whole table in O(1) (a
 /// bucket whose stamp is older counts as empty), so nothing is cleared per step.
 /// Insertion appends entries; build() then lays each bucket's entries out
@@ -29,10 +30,12 @@
 /// has diverged and an element has been stretched across the scene.
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <stdexcept>
 #include <vector>
 
+#include "method/detection/fast_modulo.hpp"
 #include "sim/mesh/tet_mesh.hpp"
 #include "sim/parallel/worker_pool.hpp"
 
@@ -47,7 +50,17 @@ class HashOverflow : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-std::uint64_t hash_cell(HashFunction function, std::int64_t i, std::int64_t j, std::int64_t k);
+/// The cell's 64-bit hash, before it is reduced modulo the table size
+/// (inline: it runs for every cell of every box and every query).
+inline std::uint64_t hash_cell(HashFunction function, std::int64_t i, std::int64_t j, std::int64_t k) {
+  const auto ui = static_cast<std::uint64_t>(i), uj = static_cast<std::uint64_t>(j),
+             uk = static_cast<std::uint64_t>(k);
+  if (function == HashFunction::Paper) return (ui * 73856093ULL) ^ (uj * 19349663ULL) ^ (uk * 83492791ULL);
+  std::uint64_t z = ui * 0x9E3779B97F4A7C15ULL + uj * 0xC2B2AE3D27D4EB4FULL + uk * 0x165667B19E3779F9ULL;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  return z ^ (z >> 31);
+}
 
 /// Smallest prime >= n (n >= 2).
 std::uint64_t next_prime(std::uint64_t n);
@@ -83,8 +96,9 @@ class SpatialHash {
   /// sorted array differs, which no query sees). Returns the cells inserted.
   /// Each thread takes a contiguous range of boxes and computes their cells'
   /// buckets into one list per owner (in order); an owner is a contiguous
-  /// range of at most `buckets_per_owner` buckets, and there are at least as
-  /// many owners as threads. Then each owner's buckets are counted, placed
+  /// range of at most `buckets_per_owner` buckets (a power of two), and there
+  /// are at least as many owners as threads where the table has as many
+  /// buckets. Then each owner's buckets are counted, placed
   /// and filled from the lists meant for it, read in thread order, so no two
   /// threads write one bucket. Small owners keep the build's random accesses
   /// to the buckets and the sorted items in a core's cache, which is why a
@@ -116,7 +130,10 @@ class SpatialHash {
   double cell_size_m() const { return m_cell_size; }
   HashFunction function() const { return m_function; }
   /// The grid index of coordinate x along any axis: floor(x / cell size), clamped.
-  std::int64_t cell_of(double x) const;
+  std::int64_t cell_of(double x) const {
+    constexpr double kLimit = 1125899906842624.0;  // 2^50
+    return static_cast<std::int64_t>(std::clamp(std::floor(x * m_inverse_cell), -kLimit, kLimit));
+  }
   std::size_t table_size() const { return m_buckets.size(); }
   std::size_t entry_count() const { return m_built_in_parts ? m_sorted.size() : m_entries.size(); }
   /// Buckets holding at least one entry in the current epoch.
@@ -155,13 +172,13 @@ class SpatialHash {
     ++bucket.count;
     return first;
   }
-  /// The owner of `owners` that owns bucket b: contiguous ranges of buckets.
-  std::size_t owner_of(std::size_t b, std::size_t owners) const { return b * owners / m_buckets.size(); }
+  /// The owner of bucket b when owners hold 2^shift buckets each.
+  static std::size_t owner_of(std::size_t b, int shift) { return b >> shift; }
   /// insert_all_and_build()'s second half: each owner's buckets are counted,
   /// placed and filled from m_part_entries, owners spread over the threads.
   void build_parallel(WorkerPool& pool, std::size_t owners);
   std::size_t bucket_of(std::int64_t i, std::int64_t j, std::int64_t k) const {
-    return static_cast<std::size_t>(hash_cell(m_function, i, j, k) % m_buckets.size());
+    return static_cast<std::size_t>(m_modulo(hash_cell(m_function, i, j, k)));
   }
   template <typename F>
   void for_each_in_bucket(std::size_t b, F& f) const {
@@ -183,6 +200,7 @@ class SpatialHash {
     std::uint32_t start = 0;  ///< first entry in m_sorted (after build)
   };
   std::vector<Bucket> m_buckets;
+  FastModulo m_modulo;  ///< modulo m_buckets.size()
   std::uint32_t m_epoch = 1;
   std::vector<Entry> m_entries;   // in insertion order
   std::vector<std::uint32_t> m_sorted;  // items grouped by bucket (after build)
@@ -203,9 +221,14 @@ std::size_t SpatialHash::insert_all_and_build(std::size_t n, BoxOf&& box_of, Wor
   if (!m_entries.empty() || m_built_in_parts)
     throw std::logic_error("SpatialHash::insert_all_and_build needs an empty table");
   const std::size_t parts = static_cast<std::size_t>(pool.threads());
-  const std::size_t owners =
-      std::max(parts, (m_buckets.size() + std::max<std::size_t>(buckets_per_owner, 1) - 1) /
-                          std::max<std::size_t>(buckets_per_owner, 1));
+  // Owners of 2^shift buckets (so a bucket's owner is a shift, not a
+  // division): the largest power of two within buckets_per_owner that still
+  // leaves every thread an owner, where the table has that many buckets.
+  int shift = 0;
+  while ((std::size_t(2) << shift) <= buckets_per_owner) ++shift;
+  const auto owners_of = [&](int s) { return (m_buckets.size() + (std::size_t(1) << s) - 1) >> s; };
+  while (shift > 0 && owners_of(shift) < parts) --shift;
+  const std::size_t owners = owners_of(shift);
   m_part_entries.resize(parts * owners);
   // Every list emptied here, not by its part: a part with an empty range
   // never runs, and must not leave last epoch's entries behind.
@@ -218,7 +241,7 @@ std::size_t SpatialHash::insert_all_and_build(std::size_t n, BoxOf&& box_of, Wor
     std::uint32_t item = 0;
     for (std::size_t i = begin; i < end; ++i) {
       if (!box_of(i, lo, hi, item)) continue;
-      cells[p] += buckets_of_box(lo, hi, [&](std::uint32_t b) { lists[owner_of(b, owners)].push_back({item, b}); });
+      cells[p] += buckets_of_box(lo, hi, [&](std::uint32_t b) { lists[owner_of(b, shift)].push_back({item, b}); });
     }
   });
   build_parallel(pool, owners);
