@@ -107,11 +107,14 @@ std::uint64_t border_edge_crossing(const World& world, const Contact& c, std::in
   double best_t = -1.0;
   Vec3 best_normal = Vec3::Zero();
   const Vec3 grow = Vec3::Constant(margin_m);
-  surface.for_each_candidate(c.other, p.cwiseMin(q) - grow, p.cwiseMax(q) + grow, scratch, [&](std::int32_t tri) {
+  const Vec3 edge_lo = p.cwiseMin(q), edge_hi = p.cwiseMax(q);
+  surface.for_each_candidate(c.other, edge_lo - grow, edge_hi + grow, scratch, [&](std::int32_t tri) {
     work += work::kCandidate;
     const Triangle& f = B.mesh->surface[tri];
     const Vec3 &a = B.x_m[f[0]], &b = B.x_m[f[1]], &cc = B.x_m[f[2]];
-    if (!segment_crosses_triangle_perturbed(p, q, a, b, cc)) return;
+    // Most candidates of a bucket lie apart from the edge: rejected without
+    // an orient3d, and charged as before.
+    if (triangle_box_apart(edge_lo, edge_hi, a, b, cc) || !segment_crosses_triangle_perturbed(p, q, a, b, cc)) return;
     const double t = segment_plane_parameter(p, q, a, b, cc);
     if (t > best_t) {
       best_t = t;

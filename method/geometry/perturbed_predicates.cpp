@@ -49,6 +49,11 @@ bool segment_crosses_triangle_perturbed(const Vec3& p, const Vec3& q, const Vec3
   return s_ab != 0 && s_ab == s_bc && s_bc == s_ca;
 }
 
+bool triangle_box_apart(const Vec3& edge_lo, const Vec3& edge_hi, const Vec3& a, const Vec3& b, const Vec3& c) {
+  return (a.cwiseMax(b).cwiseMax(c).array() < edge_lo.array()).any() ||
+         (a.cwiseMin(b).cwiseMin(c).array() > edge_hi.array()).any();
+}
+
 double segment_plane_parameter(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c) {
   const Vec3 n = (b - a).cross(c - a);
   const double op = n.dot(p - a), oq = n.dot(q - a);

@@ -51,6 +51,14 @@ bool point_in_tet_perturbed(const Vec3& p, const Vec3& v0, const Vec3& v1, const
 /// at an end point, the answer is a clean yes or no.
 bool segment_crosses_triangle_perturbed(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c);
 
+/// Whether the box of triangle (a, b, c) lies strictly apart from the box
+/// [edge_lo, edge_hi] of a segment (its end points' componentwise min and
+/// max) along some axis. Then segment_crosses_triangle_perturbed() is false
+/// for that segment: the perturbation is infinitesimal, so a crossing would
+/// put a point in both closed boxes. Exact comparisons; boxes that touch are
+/// not apart (they go on to the predicates). A cheap rejection before them.
+bool triangle_box_apart(const Vec3& edge_lo, const Vec3& edge_hi, const Vec3& a, const Vec3& b, const Vec3& c);
+
 /// The parameter t in [0, 1] where segment p->q meets the plane of (a, b, c),
 /// in floating point (a construction, not a decision): t = o_p / (o_p - o_q)
 /// of the two signed volumes, clamped to [0, 1]; 0 when p lies on the plane.

@@ -160,6 +160,39 @@ TEST_CASE("perturbed segment-triangle: crossings of a closed surface have the ri
   }
 }
 
+TEST_CASE("a triangle whose box lies apart from a segment's is never crossed by it", "[predicates]") {
+  // Lattice points (ends on the triangle's plane, edges and vertices, boxes
+  // touching exactly) and general positions, under every transform: each
+  // rejection must be a pair the predicate does not cross, and the test
+  // needs both rejections and crossings among pairs whose boxes touch or
+  // overlap, so that it can fail.
+  std::mt19937 rng(23);
+  std::uniform_int_distribution<int> lattice(-2, 2);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int apart = 0, crossed = 0, touching_crossed = 0;
+  for (const Transform& t : transforms())
+    for (int trial = 0; trial < 100000; ++trial) {
+      Vec3 v[5];
+      for (Vec3& x : v)
+        x = trial % 2 ? Vec3(lattice(rng) * 0.5, lattice(rng) * 0.5, lattice(rng) * 0.5) : Vec3(u(rng), u(rng), u(rng));
+      for (Vec3& x : v) x = t.apply(x);
+      const Vec3 &p = v[0], &q = v[1];
+      const Vec3 lo = p.cwiseMin(q), hi = p.cwiseMax(q);
+      const bool rejected = triangle_box_apart(lo, hi, v[2], v[3], v[4]);
+      const bool crosses = segment_crosses_triangle_perturbed(p, q, v[2], v[3], v[4]);
+      INFO(t.name << ", trial " << trial);
+      REQUIRE_FALSE((rejected && crosses));
+      apart += rejected;
+      crossed += crosses;
+      // Crossings where the boxes touch along an axis: the edge of the rule.
+      const Vec3 tri_lo = v[2].cwiseMin(v[3]).cwiseMin(v[4]), tri_hi = v[2].cwiseMax(v[3]).cwiseMax(v[4]);
+      touching_crossed += crosses && ((tri_hi.array() == lo.array()).any() || (tri_lo.array() == hi.array()).any());
+    }
+  CHECK(apart > 10000);
+  CHECK(crossed > 10000);
+  CHECK(touching_crossed > 0);
+}
+
 TEST_CASE("coplanar stacked plates: the shared face belongs to one side only", "[predicates]") {
   // Plate B sits exactly on plate A. delta points up (+eps^2 in y), so A's
   // top vertices count as inside B where they are not on B's far x/z faces,
