@@ -37,15 +37,16 @@ void TimingMeter::summarize(Json& summary) const {
   e.loadavg_start = m_start.loadavg_1min;
   e.governor = cpu_governor();
   e.pinned_cpu = pinned_cpu();
-  const TimingVerdict v = timing_verdict(e);
-  const auto opt = [](const auto& o) { return o ? Json(*o) : Json(nullptr); };
   Json floor(nullptr);
   if (!m_floor_overshoot_ms.empty()) {
     const Distribution d = tcb::summarize(m_floor_overshoot_ms);
     floor = {{"windows", m_floor_overshoot_ms.size()},
              {"overshoot_us", tail_json(d, 1000.0)},
              {"overshoot_pct", tail_json(d, 100.0 / m_budget.value)}};
+    e.floor_p99_pct = 100.0 * d.p99 / m_budget.value;
   }
+  const TimingVerdict v = timing_verdict(e);
+  const auto opt = [](const auto& o) { return o ? Json(*o) : Json(nullptr); };
   summary["timing"] = {
       {"verdict", v.noisy ? "noisy" : "quiet"},
       {"reasons", v.reasons},

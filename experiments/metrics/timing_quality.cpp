@@ -31,6 +31,11 @@ TimingVerdict timing_verdict(const TimingEvidence& e) {
   else if (*e.governor != "performance")
     v.notes.push_back("CPU frequency governor '" + *e.governor + "': the clock rate may change during the run");
   if (!e.pinned_cpu) v.notes.push_back("handling thread not pinned (--pin)");
+  if (e.floor_p99_pct && *e.floor_p99_pct >= 1.0)
+    v.notes.push_back(fmt::format("a null handler beside the run overshot the budget by {:.2f} % at p99 "
+                                  "(summary.timing.floor): overshoot up to that is the machine's as much as the "
+                                  "method's",
+                                  *e.floor_p99_pct));
   v.noisy = !v.reasons.empty();
   return v;
 }

@@ -14,7 +14,11 @@
 ///   - more than 1 % of its steps were preempted;
 ///   - the other processes kept more than a quarter of the CPUs it did not
 ///     use busy on average (other_busy_cpus > 0.25 max(1, cpus - 1)).
-/// Notes, which do not make it noisy: the 1-minute load average at the start
+/// Notes, which do not make it noisy: the machine's own overshoot floor (a
+/// null handler beside the run, run/timing_floor.hpp) when its p99 reaches 1 %
+/// of the budget (overshoot up to it is the machine's as much as the method's;
+/// a floor is evidence about the machine, not about this run's interference,
+/// so it never makes a run noisy), the 1-minute load average at the start
 /// when it exceeds cpus - 0.5 (it lags by a minute and counts a sweep's own
 /// previous runs, so it is a hint, not evidence), the CPU governor is not
 /// "performance" or cannot be read, the handling thread was not pinned.
@@ -39,6 +43,7 @@ struct TimingEvidence {
   std::optional<double> loadavg_start;    ///< 1-minute load average
   std::optional<std::string> governor;
   std::optional<int> pinned_cpu;
+  std::optional<double> floor_p99_pct;    ///< the null handler's overshoot p99, % of the budget
 };
 
 struct TimingVerdict {

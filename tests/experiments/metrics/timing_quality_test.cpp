@@ -64,6 +64,15 @@ TEST_CASE("the verdict follows its rule: preempted steps and other processes; lo
   e.governor = "powersave";
   CHECK_THAT(timing_verdict(e).notes[1], Catch::Matchers::Contains("powersave"));
 
+  // The machine's own floor is a note from 1 % of the budget, never a reason.
+  e = quiet;
+  e.floor_p99_pct = 0.99;
+  CHECK(timing_verdict(e).notes.empty());
+  e.floor_p99_pct = 14.0;
+  CHECK_FALSE(timing_verdict(e).noisy);
+  REQUIRE(timing_verdict(e).notes.size() == 1);
+  CHECK_THAT(timing_verdict(e).notes[0], Catch::Matchers::Contains("14.00 % at p99"));
+
   TimingEvidence none;  // a run of 0 steps
   CHECK_FALSE(timing_verdict(none).noisy);
 }
