@@ -89,6 +89,7 @@ class LiveCommand final : public Command {
                                       : std::filesystem::path(m_out);
     m_options.steps = static_cast<std::int64_t>(m_seconds / scene.world.dt_s);
     m_options.argv = argv;
+    m_options.timing_floor = false;  // paced to real time: no spare budget to spin
     m_options.on_warning = [](const std::string& w) { std::cerr << "tcbench: warning: " << w << '\n'; };
 
     SessionSlot slot;

@@ -60,6 +60,7 @@ struct RunSetup {
   const CollisionSettings* collision = nullptr;
   /// A reference run's directory (--reference): divergence_meter.hpp. Empty: none.
   std::filesystem::path reference_dir{};
+  bool timing_floor = true;  ///< RunOptions::timing_floor
 };
 
 /// One step as the meters see it.

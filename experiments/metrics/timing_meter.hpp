@@ -10,10 +10,12 @@
 /// `floor`: under a wall-clock budget of at most kFloorMaxWindowMs, after
 /// every step (outside every timed interval) the meter spins one window of the
 /// budget's length with a null handler (run/timing_floor.hpp), so the machine's
-/// own overshoot is sampled as often as the method's and at the same times:
+/// own overshoot is sampled as often as the method's, interleaved with its
+/// steps (between them, not at the same moments):
 ///   {windows, overshoot_us {p50, p99, max}, overshoot_pct {p50, p99, max}}
-/// null otherwise. It adds up to the budget per step to the run's wall time,
-/// none to any handling figure.
+/// null otherwise, and null when the run turned it off (RunSetup::timing_floor:
+/// tcbench live). It adds one window and its overshoot per step to the run's
+/// wall time (wall_s), nothing to any handling figure.
 
 #include "experiments/metrics/meter.hpp"
 #include "experiments/run/machine_load.hpp"
@@ -34,6 +36,7 @@ class TimingMeter final : public Meter {
 
  private:
   BudgetSpec m_budget;
+  bool m_floor = true;  ///< RunSetup::timing_floor
   MachineSample m_start;
   std::int64_t m_steps = 0, m_preempted = 0, m_switches = 0;
   std::vector<double> m_floor_overshoot_ms;  ///< one null-handler window a step

@@ -128,7 +128,8 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
       resolve_collision_settings(world, scene.collision, scene.world.dt_s,
                                  scene.path.empty() ? std::string("scene") : scene.path.string());
   const RunSetup setup{scene,       world, options.budget, options.oracle, options.overlap.value_or(options.oracle),
-                       steps_total, options.force_reference, &collision, options.reference_dir};
+                       steps_total, options.force_reference, &collision, options.reference_dir,
+                       options.timing_floor};
   const std::vector<std::unique_ptr<Meter>> meters = make_meters(setup);
   handler->init(world, collision);  // not timed
   // Doubtful collision settings matter only to a method that handles collisions.

@@ -67,6 +67,11 @@ struct RunOptions {
   /// that went unstable too); returning false ends the run there, status ok
   /// (run.json: steps < steps_requested).
   std::function<bool(const StepContext&)> after_step;
+  /// Measure the machine's overshoot floor beside the run (timing_meter.hpp:
+  /// one null-handler window of a wall budget <= 10 ms after every step).
+  /// tcbench live turns it off: its steps are paced to real time, and the
+  /// spin would eat the time the probe has.
+  bool timing_floor = true;
 };
 
 struct RunOutcome {

@@ -225,7 +225,7 @@ std::size_t SpatialHash::insert_all_and_build(std::size_t n, BoxOf&& box_of, Wor
   // division): the largest power of two within buckets_per_owner that still
   // leaves every thread an owner, where the table has that many buckets.
   int shift = 0;
-  while ((std::size_t(2) << shift) <= buckets_per_owner) ++shift;
+  while (shift < 40 && (std::size_t(2) << shift) <= buckets_per_owner) ++shift;  // 2^40 buckets: beyond any table
   const auto owners_of = [&](int s) { return (m_buckets.size() + (std::size_t(1) << s) - 1) >> s; };
   while (shift > 0 && owners_of(shift) < parts) --shift;
   const std::size_t owners = owners_of(shift);

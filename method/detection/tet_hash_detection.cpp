@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <optional>
 
 #include "method/geometry/perturbed_predicates.hpp"
 #include "method/handler/heap_bytes.hpp"
@@ -76,8 +77,8 @@ std::uint64_t TetHashDetector::hash_tets(const World& world, const CollisionPair
   // Without a pool the owners' build runs on this thread: its random accesses
   // stay in a core's cache, where insert_box() and build() reach across the
   // whole table for every entry (spatial_hash.hpp).
-  WorkerPool caller(1);
-  WorkerPool& threads = pool ? *pool : caller;
+  std::optional<WorkerPool> caller;  // made only when needed: a pool is not free to build
+  WorkerPool& threads = pool ? *pool : caller.emplace(1);
   // Global tet ids run body by body in hash order, so ranges of ids are
   // ranges of the serial walk.
   const auto box_of = [&](std::size_t id, Vec3& lo, Vec3& hi, std::uint32_t& item) {

@@ -56,27 +56,34 @@ class GranularityClaim(unittest.TestCase):
         self.assertIn("14.0 %", verdict)
         self.assertIn("machine floor p99 up to 14.0 %", measured)
 
-    def test_a_run_above_floor_plus_threshold_fails_whatever_the_floor(self):
+    def test_a_run_over_floor_plus_threshold_fails_whatever_the_floor(self):
         # 1040 % over a 6 % floor: the method's own part exceeds 5 % even crediting the whole floor.
-        _, verdict = worst_overshoot([run("paper", 1040.0, 1000.0, "quiet", floor_p99=6.0)], None)
-        self.assertEqual(verdict, FAILS)
-        # Just past floor + threshold fails; just within it does not decide.
-        self.assertEqual(worst_overshoot([run("x", 11.5, 11.0, "quiet", floor_p99=6.0)], None)[1], FAILS)
+        self.assertEqual(worst_overshoot([run("paper", 1040.0, 1000.0, "quiet", floor_p99=6.0)], None)[1], FAILS)
+        # At floor + threshold it fails; just within it, it does not decide.
+        self.assertEqual(worst_overshoot([run("x", 11.0, 11.0, "quiet", floor_p99=6.0)], None)[1], FAILS)
         self.assertTrue(worst_overshoot([run("x", 10.5, 10.0, "quiet", floor_p99=6.0)], None)[1]
                         .startswith(INCONCLUSIVE))
 
-    def test_a_floor_below_the_threshold_changes_nothing(self):
-        _, verdict = worst_overshoot([run("a", 7.0, 6.5, "quiet", floor_p99=0.5)], None)
-        self.assertEqual(verdict, FAILS)
-        _, verdict = worst_overshoot([run("a", 3.0, 2.9, "quiet", floor_p99=0.5)], None)
-        self.assertEqual(verdict, HOLDS)
+    def test_the_same_line_whatever_the_floor(self):
+        # 9 % over floors of 4.9 % and 5.0 % both decide nothing (the rule has no step at the threshold) ...
+        for floor in (4.9, 5.0):
+            self.assertTrue(worst_overshoot([run("x", 9.0, 9.0, "quiet", floor_p99=floor)], None)[1]
+                            .startswith(INCONCLUSIVE))
+        # ... a run under the threshold holds whatever its floor ...
+        self.assertEqual(worst_overshoot([run("a", 3.0, 2.9, "quiet", floor_p99=14.0)], None)[1], HOLDS)
+        # ... and a small floor leaves a clear miss a miss.
+        self.assertEqual(worst_overshoot([run("a", 7.0, 6.5, "quiet", floor_p99=0.5)], None)[1], FAILS)
 
     def test_the_runs_the_machine_could_judge_decide(self):
         _, verdict = worst_overshoot([run("a", 3.0, 2.9, "quiet", floor_p99=0.5),
-                                      run("b", 9.0, 8.0, "quiet", floor_p99=7.0)], None)
+                                      run("b", 9.0, 8.0, "quiet", floor_p99=7.0),
+                                      run("loaded", 120.0, 8.0, "noisy")], None)
         self.assertTrue(verdict.startswith(HOLDS), verdict)
-        self.assertIn(f"1 run {INCONCLUSIVE} (machine floor", verdict)
-
+        self.assertIn(f"1 run {INCONCLUSIVE} (over by no more than the machine floor); 1 run {INCONCLUSIVE} "
+                      "(noisy machine)", verdict)
+        _, verdict = worst_overshoot([run("a", 3.0, 2.9, "quiet"), run("b", 9.0, 8.0, "quiet", floor_p99=7.0),
+                                      run("c", 30.0, 29.0, "quiet", floor_p99=7.0)], None)
+        self.assertTrue(verdict.startswith(FAILS), verdict)
 
 if __name__ == "__main__":
     unittest.main()

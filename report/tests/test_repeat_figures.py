@@ -364,6 +364,7 @@ class EveryFigureWithRepeats(unittest.TestCase):
                             recall_mean=0.9, recall_min=0.5, settled_max_speed_median=0.02, tunneling=0,
                             overshoot_pct={"p50": 1.0, "p99": 3.0 + s, "max": 9.0},
                             overshoot_cpu_pct={"p50": 1.0, "p99": 2.0, "max": 4.0},
+                            timing={"verdict": "quiet", "floor": {"windows": 40, "overshoot_pct": {"p99": 1.5 + s}}},
                             top_centre_height_m={"initial": 1.0, "final": 1.0}, latency_steps={"mean": 1, "max": 2},
                             probe_force_change_rms=0.2, **dict(common, overrides=JITTER_SETS + [
                                 "collision.cell_size=auto*2"])))

@@ -28,10 +28,11 @@ struct Step {
   std::int64_t switches;
 };
 
-nlohmann::ordered_json measure(const BudgetSpec& budget, const std::vector<Step>& steps) {
+nlohmann::ordered_json measure(const BudgetSpec& budget, const std::vector<Step>& steps, bool timing_floor = true) {
   const SceneDesc scene = one_cube();
   const World world = build_world(scene.world);
-  const RunSetup setup{scene, world, budget, {}, {}, static_cast<std::int64_t>(steps.size())};
+  RunSetup setup{scene, world, budget, {}, {}, static_cast<std::int64_t>(steps.size())};
+  setup.timing_floor = timing_floor;
   HandlingMeter handling(setup);
   TimingMeter timing(setup);
   std::map<std::string, std::size_t, std::less<>> index;
@@ -76,9 +77,10 @@ TEST_CASE("a step that lost more than 1 % of the wall budget to preemption is co
         Approx(s["timing"]["floor"]["overshoot_us"]["max"].get<double>() / 40.0));  // 1 % of 4 ms is 40 us
 }
 
-TEST_CASE("no floor is spun above kFloorMaxWindowMs", "[timing]") {
-  const auto s = measure(BudgetSpec{BudgetKind::WallMs, 2.0 * kFloorMaxWindowMs}, {{1.0, 1.0, 0}});
-  CHECK(s["timing"]["floor"].is_null());
+TEST_CASE("no floor is spun above kFloorMaxWindowMs, or when the run turned it off", "[timing]") {
+  CHECK(measure(BudgetSpec{BudgetKind::WallMs, 2.0 * kFloorMaxWindowMs}, {{1.0, 1.0, 0}})["timing"]["floor"].is_null());
+  CHECK(measure(BudgetSpec{BudgetKind::WallMs, 1.0}, {{1.0, 1.0, 0}}, false)["timing"]["floor"].is_null());
+  CHECK_FALSE(measure(BudgetSpec{BudgetKind::WallMs, 1.0}, {{1.0, 1.0, 0}})["timing"]["floor"].is_null());
 }
 
 TEST_CASE("without a wall budget a step's base is its own wall time; overshoot stays null", "[timing]") {

@@ -3,7 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
-
+#include <limits>
 #include <random>
 #include <set>
 
@@ -125,6 +125,44 @@ TEST_CASE("spatial hash: the parallel insert and build make the serial table", "
           parallel.for_each_in_box(lo, hi, [&](std::uint32_t id) { b.push_back(id); });
           REQUIRE(a == b);
         }
+      }
+    }
+  }
+}
+
+TEST_CASE("spatial hash: more threads than buckets, and owners of any size, make the serial table", "[hash][threads]") {
+  // A table of 2 buckets on 3 threads has fewer owners than threads (a
+  // thread builds nothing); an owner size beyond any table is one owner a
+  // thread.
+  std::vector<std::pair<Vec3, Vec3>> boxes;
+  for (int i = 0; i < 40; ++i) {
+    const Vec3 lo = Vec3::Constant(0.07 * i) + Vec3(0.0, 0.3 * (i % 3), 0.0);
+    boxes.emplace_back(lo, lo + Vec3::Constant(0.3));
+  }
+  for (const std::size_t table : {std::size_t(1), std::size_t(2), std::size_t(7)}) {
+    SpatialHash serial(0.25, table, HashFunction::Mixed);
+    serial.begin_epoch();
+    for (std::size_t i = 0; i < boxes.size(); ++i)
+      serial.insert_box(boxes[i].first, boxes[i].second, static_cast<std::uint32_t>(i));
+    serial.build();
+    for (const std::size_t per_owner : {std::size_t(1), std::size_t(3), std::numeric_limits<std::size_t>::max()}) {
+      WorkerPool pool(3);
+      SpatialHash parallel(0.25, table, HashFunction::Mixed);
+      parallel.begin_epoch();
+      parallel.insert_all_and_build(
+          boxes.size(),
+          [&](std::size_t i, Vec3& lo, Vec3& hi, std::uint32_t& item) {
+            lo = boxes[i].first, hi = boxes[i].second, item = static_cast<std::uint32_t>(i);
+            return true;
+          },
+          pool, per_owner);
+      INFO("table " << table << ", buckets per owner " << per_owner);
+      CHECK(parallel.entry_count() == serial.entry_count());
+      for (const auto& [lo, hi] : boxes) {
+        std::vector<std::uint32_t> a, b;
+        serial.for_each_in_box(lo, hi, [&](std::uint32_t id) { a.push_back(id); });
+        parallel.for_each_in_box(lo, hi, [&](std::uint32_t id) { b.push_back(id); });
+        REQUIRE(a == b);
       }
     }
   }
