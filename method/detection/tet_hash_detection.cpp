@@ -188,6 +188,13 @@ std::optional<Contact> TetHashDetector::query_point(const World& world, const Co
   const std::uint32_t own_first = m_body_tet_offset[static_cast<std::size_t>(object)];
   const std::uint32_t own_count =
       pairs.enabled(object, object) ? 0 : static_cast<std::uint32_t>(world.bodies[object].mesh->tet_count());
+  // A tet met twice is tested once. In one bucket its entries are adjacent
+  // (insert_box() puts all of a tet's cells in at once, and a bucket keeps
+  // insertion order), so a query of one cell in the main table alone skips a
+  // repeat of the last id without touching memory; a query over several
+  // buckets, or the overflow table too, stamps each tet met.
+  const bool one_bucket = !(margin_m > 0.0) && !m_overflow_active;
+  std::uint32_t last = UINT32_MAX;
   const auto test = [&](std::uint32_t id) {
     // The owner next: it rejects most other entries, and those need no
     // "met" stamp, which would be a second random access per entry
@@ -195,8 +202,13 @@ std::optional<Contact> TetHashDetector::query_point(const World& world, const Co
     if (id >= best || id - own_first < own_count) return;
     const std::int32_t other = m_owner[id];
     if (!pairs.enabled(object, other)) return;
-    if (scratch.tested[id] == scratch.query) return;
-    scratch.tested[id] = scratch.query;
+    if (one_bucket) {
+      if (id == last) return;
+      last = id;
+    } else {
+      if (scratch.tested[id] == scratch.query) return;
+      scratch.tested[id] = scratch.query;
+    }
     const std::int32_t t = static_cast<std::int32_t>(id - m_body_tet_offset[other]);
     const Body& B = world.bodies[other];
     const Tet& tet = B.mesh->tets[t];

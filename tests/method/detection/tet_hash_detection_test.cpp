@@ -11,9 +11,11 @@
 #include <algorithm>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <set>
 #include <tuple>
 
+#include "method/geometry/perturbed_predicates.hpp"
 #include "method/handler/work_units.hpp"
 #include "tests/method/test_worlds.hpp"
 
@@ -176,4 +178,45 @@ TEST_CASE("hashing the tets on 1, 2 or 3 threads gives the piecewise table: same
       CHECK(parallel.overflow_tets() == serial.overflow_tets());
       CHECK(each_answer(parallel) == each_answer(serial));
     }
+}
+
+TEST_CASE("a tet met several times in a query's bucket is one candidate", "[detection]") {
+  // A table of one bucket: every cell of every tet lands in it, each tet's
+  // entries side by side, in id order. A query is charged one candidate for
+  // each distinct tet of the other body whose box holds the point, up to the
+  // first that holds the point itself (later ids are skipped: the lowest one
+  // is the answer), however many cells the tet covers. Small cells make each
+  // tet cover many.
+  const auto scene = test::scene_of({{"a", "box:size=0.2x0.2x0.2,cells=2x2x2"},
+                                     {"b", "box:size=0.2x0.2x0.2,cells=2x2x2", Vec3(0.05, 0.05, 0.05)}});
+  const World world = test::build_world(scene);
+  const CollisionPairs pairs(world);
+  DetectionSettings settings;
+  settings.cell_size_m = 0.02;  // a tet of 0.1 m spans ~6 cells an axis
+  settings.table_size = 1;
+  TetHashDetector detector(world, settings);
+  detector.hash_tets(world, pairs);
+  int checked = 0;
+  for (std::int32_t v = 0; v < static_cast<std::int32_t>(world.bodies[0].x_m.size()); ++v) {
+    const Vec3& p = world.bodies[0].x_m[v];
+    std::uint64_t expected = work::kPointQuery;
+    const Body& b = world.bodies[1];
+    std::optional<std::size_t> inside;
+    for (std::size_t i = 0; i < b.mesh->tets.size() && !inside; ++i) {
+      const Tet& t = b.mesh->tets[i];
+      Vec3 lo = b.x_m[t[0]], hi = lo;
+      for (int k = 1; k < 4; ++k) lo = lo.cwiseMin(b.x_m[t[k]]), hi = hi.cwiseMax(b.x_m[t[k]]);
+      if ((p.array() < lo.array()).any() || (p.array() > hi.array()).any()) continue;
+      expected += work::kCandidate;
+      if (point_in_tet_perturbed(p, b.x_m[t[0]], b.x_m[t[1]], b.x_m[t[2]], b.x_m[t[3]])) inside = i;
+    }
+    std::uint64_t work = 0;
+    const auto hit = detector.query_point(world, pairs, 0, v, work);
+    INFO("vertex " << v);
+    CHECK(work == expected);
+    CHECK(hit.has_value() == inside.has_value());
+    if (hit && inside) CHECK(hit->tet == static_cast<std::int32_t>(*inside));
+    checked += expected > work::kPointQuery + work::kCandidate;  // a tet charged once though met in many cells
+  }
+  CHECK(checked > 3);
 }
