@@ -8,15 +8,17 @@
 namespace tcb {
 
 TimingMeter::TimingMeter(const RunSetup& run)
-    : m_budget(run.budget), m_floor(run.timing_floor), m_start(sample_machine()) {}
+    : m_budget(run.budget),
+      m_floor(run.timing_floor && run.budget.kind == BudgetKind::WallMs && run.budget.value > 0.0 &&
+              run.budget.value <= kFloorMaxWindowMs),
+      m_start(sample_machine()) {}
 
 void TimingMeter::on_step(StepContext& ctx) {
   ++m_steps;
   m_switches += ctx.handling_switches;
   const double base = m_budget.kind == BudgetKind::WallMs && m_budget.value > 0.0 ? m_budget.value : ctx.handling_ms;
   if (is_preempted(ctx.handling_ms, ctx.handling_cpu_ms, base)) ++m_preempted;
-  if (m_floor && m_budget.kind == BudgetKind::WallMs && m_budget.value > 0.0 && m_budget.value <= kFloorMaxWindowMs)
-    m_floor_overshoot_ms.push_back(null_handler_overshoot_ms(m_budget.value));
+  if (m_floor) m_floor_overshoot_ms.push_back(null_handler_overshoot_ms(m_budget.value));
 }
 
 namespace {

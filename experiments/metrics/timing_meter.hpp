@@ -36,7 +36,7 @@ class TimingMeter final : public Meter {
 
  private:
   BudgetSpec m_budget;
-  bool m_floor = true;  ///< RunSetup::timing_floor
+  bool m_floor = false;  ///< spin a floor window after each step (the file comment's conditions)
   MachineSample m_start;
   std::int64_t m_steps = 0, m_preempted = 0, m_switches = 0;
   std::vector<double> m_floor_overshoot_ms;  ///< one null-handler window a step

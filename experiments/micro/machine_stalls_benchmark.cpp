@@ -35,7 +35,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
+#include <utility>
 #include <vector>
+
+#include "experiments/metrics/distribution.hpp"
 
 namespace {
 
@@ -75,14 +78,6 @@ void run_windows(benchmark::State& state, clockid_t clock) {
 void BM_WallClockWindow(benchmark::State& state) { run_windows(state, CLOCK_MONOTONIC); }
 void BM_ThreadCpuClockWindow(benchmark::State& state) { run_windows(state, CLOCK_THREAD_CPUTIME_ID); }
 
-// The q quantile (0..1) of samples, which it reorders; 0 when empty.
-double quantile(std::vector<double>& samples, double q) {
-  if (samples.empty()) return 0.0;
-  const auto k = static_cast<std::size_t>(q * static_cast<double>(samples.size() - 1));
-  std::nth_element(samples.begin(), samples.begin() + static_cast<std::ptrdiff_t>(k), samples.end());
-  return samples[k];
-}
-
 // One task: `steps` dependent multiply-adds on a value the compiler cannot
 // fold (it is returned and kept). About 4 cycles a step: 256 steps are
 // roughly 0.4 µs on a 2.5 GHz core.
@@ -110,11 +105,13 @@ void BM_NullHandlerOvershoot(benchmark::State& state) {
     overshoot_us.push_back(std::chrono::duration<double, std::micro>(now - start - window).count());
   }
   benchmark::DoNotOptimize(x);
-  state.counters["overshoot_p50_us"] = quantile(overshoot_us, 0.5);
-  state.counters["overshoot_p99_us"] = quantile(overshoot_us, 0.99);
-  state.counters["overshoot_p99_pct"] = 100.0 * state.counters["overshoot_p99_us"] / static_cast<double>(state.range(0));
-  state.counters["task_p50_us"] = quantile(task_us, 0.5);
-  state.counters["task_p99_us"] = quantile(task_us, 0.99);
+  // The run summaries' percentiles (distribution.hpp), so these read as summary.timing.floor does.
+  const tcb::Distribution overshoot = tcb::summarize(std::move(overshoot_us)), task = tcb::summarize(std::move(task_us));
+  state.counters["overshoot_p50_us"] = overshoot.p50;
+  state.counters["overshoot_p99_us"] = overshoot.p99;
+  state.counters["overshoot_p99_pct"] = 100.0 * overshoot.p99 / static_cast<double>(state.range(0));
+  state.counters["task_p50_us"] = task.p50;
+  state.counters["task_p99_us"] = task.p99;
 }
 
 // 47, 110, 160, 370 µs: haptic_probe and sneaker_grass at full/10 and full/3

@@ -79,6 +79,25 @@ TEST_CASE("spatial hash: every item is found in every cell it was inserted into"
   }
 }
 
+namespace {
+
+using Boxes = std::vector<std::pair<Vec3, Vec3>>;
+
+// Both tables list the same items in the same order for every box's cells,
+// and hold as many entries in as many buckets.
+void require_same_table(const SpatialHash& serial, const SpatialHash& parallel, const Boxes& boxes) {
+  CHECK(parallel.entry_count() == serial.entry_count());
+  CHECK(parallel.occupied_buckets() == serial.occupied_buckets());
+  for (const auto& [lo, hi] : boxes) {
+    std::vector<std::uint32_t> a, b;
+    serial.for_each_in_box(lo, hi, [&](std::uint32_t id) { a.push_back(id); });
+    parallel.for_each_in_box(lo, hi, [&](std::uint32_t id) { b.push_back(id); });
+    REQUIRE(a == b);
+  }
+}
+
+}  // namespace
+
 TEST_CASE("spatial hash: the parallel insert and build make the serial table", "[hash][threads]") {
   // Random boxes (some skipped) in a small table with many bucket collisions,
   // over several epochs of one table: every cell's bucket lists the same
@@ -88,7 +107,7 @@ TEST_CASE("spatial hash: the parallel insert and build make the serial table", "
   // the 31: more owners than threads, as on tables larger than a cache).
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(-2.0, 2.0), size(0.0, 0.6);
-  std::vector<std::pair<Vec3, Vec3>> boxes;
+  Boxes boxes;
   for (int i = 0; i < 500; ++i) {
     const Vec3 lo(u(rng), u(rng), u(rng));
     boxes.emplace_back(lo, lo + Vec3(size(rng), size(rng), size(rng)));
@@ -117,14 +136,7 @@ TEST_CASE("spatial hash: the parallel insert and build make the serial table", "
             pool, per_owner);
         INFO("threads " << threads << ", buckets per owner " << per_owner << ", epoch " << epoch);
         CHECK(cells == serial_cells);
-        CHECK(parallel.entry_count() == serial.entry_count());
-        CHECK(parallel.occupied_buckets() == serial.occupied_buckets());
-        for (const auto& [lo, hi] : boxes) {
-          std::vector<std::uint32_t> a, b;
-          serial.for_each_in_box(lo, hi, [&](std::uint32_t id) { a.push_back(id); });
-          parallel.for_each_in_box(lo, hi, [&](std::uint32_t id) { b.push_back(id); });
-          REQUIRE(a == b);
-        }
+        require_same_table(serial, parallel, boxes);
       }
     }
   }
@@ -134,7 +146,7 @@ TEST_CASE("spatial hash: more threads than buckets, and owners of any size, make
   // A table of 2 buckets on 3 threads has fewer owners than threads (a
   // thread builds nothing); an owner size beyond any table is one owner a
   // thread.
-  std::vector<std::pair<Vec3, Vec3>> boxes;
+  Boxes boxes;
   for (int i = 0; i < 40; ++i) {
     const Vec3 lo = Vec3::Constant(0.07 * i) + Vec3(0.0, 0.3 * (i % 3), 0.0);
     boxes.emplace_back(lo, lo + Vec3::Constant(0.3));
@@ -157,13 +169,7 @@ TEST_CASE("spatial hash: more threads than buckets, and owners of any size, make
           },
           pool, per_owner);
       INFO("table " << table << ", buckets per owner " << per_owner);
-      CHECK(parallel.entry_count() == serial.entry_count());
-      for (const auto& [lo, hi] : boxes) {
-        std::vector<std::uint32_t> a, b;
-        serial.for_each_in_box(lo, hi, [&](std::uint32_t id) { a.push_back(id); });
-        parallel.for_each_in_box(lo, hi, [&](std::uint32_t id) { b.push_back(id); });
-        REQUIRE(a == b);
-      }
+      require_same_table(serial, parallel, boxes);
     }
   }
 }
