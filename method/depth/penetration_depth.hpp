@@ -60,7 +60,9 @@ class SurfaceHash {
 
   /// Per-query "met" stamps over every triangle: one per thread that queries
   /// concurrently (a built, unchanging hash may be queried from many threads).
-  struct QueryScratch {
+  /// Aligned to a cache line: each query bumps `query`, and the scratches
+  /// of two threads side by side in one line would pass it back and forth.
+  struct alignas(64) QueryScratch {
     std::vector<std::uint64_t> seen;
     std::uint64_t query = 0;
   };

@@ -70,17 +70,17 @@ void SpatialHash::build_parallel(WorkerPool& pool, std::size_t owners) {
   std::vector<std::size_t> first(owners + 1, 0);  // owner q's ranges start at first[q]
   for (std::size_t q = 0; q < owners; ++q) {
     first[q + 1] = first[q];
-    for (std::size_t p = 0; p < parts; ++p) first[q + 1] += m_part_entries[p * owners + q].size();
+    for (std::size_t p = 0; p < parts; ++p) first[q + 1] += m_part_entries[p * m_part_stride + q].size();
   }
   m_sorted.resize(first[owners]);
   m_built_in_parts = true;
-  m_part_touched.resize(parts);
+  m_part_touched.resize(parts * kHeaderPad);
   pool.for_ranges(owners, [&](int part, std::size_t begin, std::size_t end) {
-    std::vector<std::uint32_t>& touched = m_part_touched[static_cast<std::size_t>(part)];
+    std::vector<std::uint32_t>& touched = m_part_touched[static_cast<std::size_t>(part) * kHeaderPad];
     for (std::size_t q = begin; q < end; ++q) {
       touched.clear();
       for (std::size_t p = 0; p < parts; ++p)
-        for (const Entry& e : m_part_entries[p * owners + q])
+        for (const Entry& e : m_part_entries[p * m_part_stride + q])
           if (count_entry(e.bucket)) touched.push_back(e.bucket);
       auto cursor = static_cast<std::uint32_t>(first[q]);
       for (std::uint32_t b : touched) {
@@ -88,7 +88,7 @@ void SpatialHash::build_parallel(WorkerPool& pool, std::size_t owners) {
         m_buckets[b].start = cursor;  // the range's end, until filled
       }
       for (std::size_t p = parts; p-- > 0;) {
-        const std::vector<Entry>& list = m_part_entries[p * owners + q];
+        const std::vector<Entry>& list = m_part_entries[p * m_part_stride + q];
         for (auto e = list.rbegin(); e != list.rend(); ++e) m_sorted[--m_buckets[e->bucket].start] = e->item;
       }
     }

@@ -93,7 +93,9 @@ class TetHashDetector {
   /// What one query remembers (the tets it met, so a tet in several of its
   /// buckets is tested and charged once). One per thread: queries with their
   /// own scratch may run concurrently on an unchanging table and world.
-  struct QueryScratch {
+  /// Aligned to a cache line: each query bumps `query`, and the scratches
+  /// of two threads side by side in one line would pass it back and forth.
+  struct alignas(64) QueryScratch {
     std::vector<std::uint32_t> tested;  ///< per global tet: the last query that met it
     std::uint32_t query = 0;
   };
