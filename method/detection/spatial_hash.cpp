@@ -75,7 +75,7 @@ void SpatialHash::build_parallel(WorkerPool& pool, std::size_t owners) {
   m_sorted.resize(first[owners]);
   m_built_in_parts = true;
   m_part_touched.resize(parts * kHeaderPad);
-  pool.for_ranges(owners, [&](int part, std::size_t begin, std::size_t end) {
+  pool.for_chunks(owners, 1, [&](int part, std::size_t begin, std::size_t end) {
     std::vector<std::uint32_t>& touched = m_part_touched[static_cast<std::size_t>(part) * kHeaderPad];
     for (std::size_t q = begin; q < end; ++q) {
       touched.clear();

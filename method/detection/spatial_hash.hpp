@@ -99,10 +99,11 @@ class SpatialHash {
   /// Each thread takes a contiguous range of boxes and computes their cells'
   /// buckets into one list per owner (in order); an owner is a contiguous
   /// range of at most `buckets_per_owner` buckets (a power of two), and there
-  /// are at least as many owners as threads where the table has as many
-  /// buckets. Then each owner's buckets are counted, placed
-  /// and filled from the lists meant for it, read in thread order, so no two
-  /// threads write one bucket. Small owners keep the build's random accesses
+  /// are at least kOwnersPerThread owners a thread on several threads (at
+  /// least one on one) where the table has as many buckets. Then each
+  /// owner's buckets are counted, placed and filled from the lists meant for
+  /// it, read in thread order, owners handed to threads as they come free,
+  /// so no two threads write one bucket. Small owners keep the build's random accesses
   /// to the buckets and the sorted items in a core's cache, which is why a
   /// pool of one thread builds this way too (the serial insert_box() and
   /// build() touch the whole table for every entry). box_of runs concurrently
@@ -116,6 +117,7 @@ class SpatialHash {
   /// 16384 buckets of 12 bytes: 192 KiB, within a core's L2 beside the
   /// owner's slice of the sorted items.
   static constexpr std::size_t kBucketsPerOwner = 16384;
+  static constexpr std::size_t kOwnersPerThread = 8;
 
   /// Calls f(item) for every entry of the bucket of point p's cell.
   template <typename F>
@@ -263,7 +265,11 @@ std::size_t SpatialHash::insert_all_and_build(std::size_t n, BoxOf&& box_of, Wor
   int shift = 0;
   while (shift < 40 && (std::size_t(2) << shift) <= buckets_per_owner) ++shift;  // 2^40 buckets: beyond any table
   const auto owners_of = [&](int s) { return (m_buckets.size() + (std::size_t(1) << s) - 1) >> s; };
-  while (shift > 0 && owners_of(shift) < parts) --shift;
+  // On several threads, at least kOwnersPerThread owners a thread (where the
+  // table has that many buckets), which the build hands out as threads come
+  // free: a few large owners split unevenly (9 on the dog pair: 5 and 4).
+  const std::size_t least_owners = parts > 1 ? kOwnersPerThread * parts : 1;
+  while (shift > 0 && owners_of(shift) < least_owners) --shift;
   const std::size_t owners = owners_of(shift);
   m_part_stride = owners + kHeaderPad;
   m_part_entries.resize(parts * m_part_stride);
