@@ -233,7 +233,7 @@ class SpatialHash {
   std::uint32_t m_epoch = 1;
   std::vector<Entry> m_entries;   // in insertion order
   std::vector<std::uint32_t> m_sorted;  // items grouped by bucket (after build)
-  // insert_all_and_build()'s lists: [p * owners + q] holds the entries
+  // insert_all_and_build()'s lists: [p * m_part_stride + q] holds the entries
   // thread p made for the buckets owner q owns, in insertion order (kept
   // between epochs, so they do not regrow).
   std::vector<std::vector<Entry>> m_part_entries;
@@ -260,8 +260,8 @@ std::size_t SpatialHash::insert_all_and_build(std::size_t n, BoxOf&& box_of, Wor
     throw std::logic_error("SpatialHash::insert_all_and_build needs an empty table");
   const std::size_t parts = static_cast<std::size_t>(pool.threads());
   // Owners of 2^shift buckets (so a bucket's owner is a shift, not a
-  // division): the largest power of two within buckets_per_owner that still
-  // leaves every thread an owner, where the table has that many buckets.
+  // division): the largest power of two within buckets_per_owner, made
+  // smaller on several threads as below.
   int shift = 0;
   while (shift < 40 && (std::size_t(2) << shift) <= buckets_per_owner) ++shift;  // 2^40 buckets: beyond any table
   const auto owners_of = [&](int s) { return (m_buckets.size() + (std::size_t(1) << s) - 1) >> s; };

@@ -222,8 +222,9 @@ std::optional<Contact> TetHashDetector::query_point(const World& world, const Co
   // memory is read (most entries near a surface are the body's own; the
   // query stage on the dog pair fell from 6.8 to 3.0 ms with it, where each
   // was tested and rejected); and once a tet holds p, no later entry can be a smaller
-  // id, so the bucket is done (the smallest-index rule). Both only skip what
-  // test() would reject unread and uncharged: the same answer and work.
+  // id, so the bucket is done (the smallest-index rule). Both skip only
+  // entries that are rejected unread and uncharged anyway (the body's own;
+  // ids not below the best so far): the same answer and work.
   const std::uint32_t own_end = own_first + own_count;
   const auto scan = [&](const std::uint32_t* it, const std::uint32_t* end) {
     while (it != end) {

@@ -143,8 +143,9 @@ TEST_CASE("spatial hash: the parallel insert and build make the serial table", "
   // over several epochs of one table: every cell's bucket lists the same
   // items in the same order as after insert_box() one by one and build(),
   // for 1, 2 and 3 threads (1: the pool runs everything on the caller), with
-  // one owner of buckets a thread and with owners of 4 buckets (8 owners of
-  // the 31: more owners than threads, as on tables larger than a cache).
+  // owners of at most 16384 buckets and of 4 (on one thread: one owner of
+  // the 31, or 8 owners; on 2 and 3 threads both become owners of 2 or 1
+  // buckets, as at least kOwnersPerThread owners a thread asks).
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(-2.0, 2.0), size(0.0, 0.6);
   Boxes boxes;
@@ -184,8 +185,8 @@ TEST_CASE("spatial hash: the parallel insert and build make the serial table", "
 
 TEST_CASE("spatial hash: more threads than buckets, and owners of any size, make the serial table", "[hash][threads]") {
   // A table of 2 buckets on 3 threads has fewer owners than threads (a
-  // thread builds nothing); an owner size beyond any table is one owner a
-  // thread.
+  // thread builds nothing); an owner size beyond any table is cut to
+  // kOwnersPerThread owners a thread, or single buckets.
   Boxes boxes;
   for (int i = 0; i < 40; ++i) {
     const Vec3 lo = Vec3::Constant(0.07 * i) + Vec3(0.0, 0.3 * (i % 3), 0.0);
