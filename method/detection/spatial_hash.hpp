@@ -132,10 +132,7 @@ class SpatialHash {
     const std::uint32_t* last;
   };
   Entries cell_entries(const Vec3& p) const {
-    const Bucket& bucket = m_buckets[bucket_of(cell_of(p.x()), cell_of(p.y()), cell_of(p.z()))];
-    if (bucket.stamp != m_epoch) return {nullptr, nullptr};
-    const std::uint32_t* first = m_sorted.data() + bucket.start;
-    return {first, first + bucket.count};
+    return bucket_entries(bucket_of(cell_of(p.x()), cell_of(p.y()), cell_of(p.z())));
   }
   /// Calls f(first, last) with the entries of every bucket of the cells box
   /// [lo, hi] overlaps (a bucket once a cell, so possibly repeatedly), each
@@ -143,10 +140,8 @@ class SpatialHash {
   template <typename F>
   std::size_t for_each_range_in_box(const Vec3& lo, const Vec3& hi, F&& f) const {
     return buckets_of_box(lo, hi, [&](std::uint32_t b) {
-      const Bucket& bucket = m_buckets[b];
-      if (bucket.stamp != m_epoch) return;
-      const std::uint32_t* first = m_sorted.data() + bucket.start;
-      f(first, first + bucket.count);
+      const Entries entries = bucket_entries(b);
+      if (entries.first != entries.last) f(entries.first, entries.last);
     });
   }
   /// Calls f(item) for every entry of every bucket of the cells box [lo, hi]
@@ -209,12 +204,17 @@ class SpatialHash {
   std::size_t bucket_of(std::int64_t i, std::int64_t j, std::int64_t k) const {
     return static_cast<std::size_t>(m_modulo(hash_cell(m_function, i, j, k)));
   }
+  /// Bucket b's entries (empty when its stamp is stale).
+  Entries bucket_entries(std::size_t b) const {
+    const Bucket& bucket = m_buckets[b];
+    if (bucket.stamp != m_epoch) return {nullptr, nullptr};
+    const std::uint32_t* first = m_sorted.data() + bucket.start;
+    return {first, first + bucket.count};
+  }
   template <typename F>
   void for_each_in_bucket(std::size_t b, F& f) const {
-    const Bucket& bucket = m_buckets[b];
-    if (bucket.stamp != m_epoch) return;
-    const std::uint32_t* it = m_sorted.data() + bucket.start;
-    for (const std::uint32_t* end = it + bucket.count; it != end; ++it) f(*it);
+    const Entries entries = bucket_entries(b);
+    for (const std::uint32_t* it = entries.first; it != entries.last; ++it) f(*it);
   }
 
   double m_cell_size = 1.0;

@@ -238,19 +238,16 @@ std::optional<Contact> TetHashDetector::query_point(const World& world, const Co
       ++it;
     }
   };
-  if (margin_m > 0.0) work += m_hash.for_each_range_in_box(p - grow, p + grow, scan) - 1;  // a unit a further cell
-  else {
-    const SpatialHash::Entries entries = m_hash.cell_entries(p);
+  // Scans a table's buckets for p (the cells within the margin, or p's
+  // cell); returns the cells searched.
+  const auto search = [&](const SpatialHash& table) -> std::size_t {
+    if (margin_m > 0.0) return table.for_each_range_in_box(p - grow, p + grow, scan);
+    const SpatialHash::Entries entries = table.cell_entries(p);
     scan(entries.first, entries.last);
-  }
-  if (m_overflow_active) {  // a unit a cell of the overflow
-    if (margin_m > 0.0) work += m_overflow.for_each_range_in_box(p - grow, p + grow, scan);
-    else {
-      const SpatialHash::Entries entries = m_overflow.cell_entries(p);
-      scan(entries.first, entries.last);
-      work += work::kPointQuery;
-    }
-  }
+    return 1;
+  };
+  work += work::kPointQuery * (search(m_hash) - 1);  // the first cell is the query's own unit
+  if (m_overflow_active) work += work::kPointQuery * search(m_overflow);  // a unit a cell of the overflow
   if (best == UINT32_MAX) return std::nullopt;
   const std::int32_t other = m_owner[best];
   return make_contact(world, object, vertex, other, static_cast<std::int32_t>(best - m_body_tet_offset[other]));
