@@ -79,6 +79,65 @@ TEST_CASE("spatial hash: every item is found in every cell it was inserted into"
   }
 }
 
+TEST_CASE("spatial hash: cell_of is floor(x / cell size), clamped to +-2^50", "[hash]") {
+  // cell_of floors by truncation and a step down below zero; the reference
+  // is std::floor, then the clamp, for edge values and a million random ones
+  // of every magnitude and sign.
+  constexpr double kLimit = 1125899906842624.0;  // 2^50
+  for (const double cell : {0.25, 0.1, 3.0, 1e-9, 1e6}) {
+    const SpatialHash hash(cell, 7, HashFunction::Mixed);
+    const auto reference = [&](double x) {
+      return static_cast<std::int64_t>(std::clamp(std::floor(x * (1.0 / cell)), -kLimit, kLimit));
+    };
+    std::vector<double> xs = {0.0, -0.0, cell, -cell, 0.5 * cell, -0.5 * cell, std::nextafter(cell, 0.0),
+                              -std::nextafter(cell, 0.0), std::nextafter(-cell, 0.0), 1e-300, -1e-300,
+                              std::numeric_limits<double>::denorm_min(), -std::numeric_limits<double>::denorm_min(),
+                              kLimit * cell, -kLimit * cell, 4 * kLimit * cell, -4 * kLimit * cell, 1e300, -1e300,
+                              std::numeric_limits<double>::max(), std::numeric_limits<double>::lowest()};
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> mantissa(-1.0, 1.0);
+    std::uniform_int_distribution<int> exponent(-60, 60);
+    for (int i = 0; i < 200000; ++i) xs.push_back(std::ldexp(mantissa(rng), exponent(rng)) * cell);
+    for (int i = -1000; i <= 1000; ++i) xs.push_back(static_cast<double>(i) * cell);  // on cell borders
+    for (const double x : xs) {
+      INFO("cell " << cell << ", x " << x);
+      REQUIRE(hash.cell_of(x) == reference(x));
+    }
+  }
+}
+
+TEST_CASE("spatial hash: a box goes into exactly the buckets hash_cell gives its cells", "[hash]") {
+  // insert_box() steps the k term by addition instead of calling hash_cell()
+  // per cell: both must name the same buckets, for both functions, on either
+  // side of the origin. The set inserted into covers the reference set (every
+  // cell's centre finds the item) and has its size (occupied buckets).
+  const double cell = 0.5;
+  const std::uint64_t n = next_prime(100003);
+  for (HashFunction function : {HashFunction::Paper, HashFunction::Mixed})
+    for (const Vec3& lo : {Vec3(-1.3, -0.2, -2.6), Vec3(1000.1, -733.7, 12.2), Vec3(-0.1, 0.1, -0.1)}) {
+      const Vec3 hi = lo + Vec3(2.1, 1.6, 2.9);
+      SpatialHash hash(cell, n, function);
+      hash.begin_epoch();
+      const std::size_t cells = hash.insert_box(lo, hi, 5);
+      hash.build();
+      std::set<std::uint64_t> reference;
+      std::size_t cells_walked = 0;
+      for (std::int64_t i = hash.cell_of(lo.x()); i <= hash.cell_of(hi.x()); ++i)
+        for (std::int64_t j = hash.cell_of(lo.y()); j <= hash.cell_of(hi.y()); ++j)
+          for (std::int64_t k = hash.cell_of(lo.z()); k <= hash.cell_of(hi.z()); ++k) {
+            reference.insert(hash_cell(function, i, j, k) % n);
+            ++cells_walked;
+            const Vec3 centre = cell * (Vec3(double(i), double(j), double(k)) + Vec3::Constant(0.5));
+            bool found = false;
+            hash.for_each_in_cell(centre, [&](std::uint32_t id) { found |= id == 5; });
+            REQUIRE(found);
+          }
+      CHECK(cells == cells_walked);
+      CHECK(cells_walked >= 5 * 4 * 6);
+      CHECK(hash.occupied_buckets() == reference.size());
+    }
+}
+
 TEST_CASE("spatial hash: a bucket lists its entries in insertion order, however it was built", "[hash]") {
   // Tet queries rely on it (ascending ids: a binary search over a body's
   // block, and an early end at the smallest hit; tet_hash_detection.cpp).
