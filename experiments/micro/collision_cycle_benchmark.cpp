@@ -7,6 +7,7 @@
 // of the vertices inside the other dog (1,541 of 15,460).
 // bucket_share: distinct buckets / distinct cells the tets occupy (1 = no two
 // occupied cells share a bucket; lower = more hash collisions).
+// cells_per_tet: cells a tet's box covers, so hash entries a tet a cycle.
 // BM_Plates20/<hash>/<threads>: the plates20 scene (15,360 tets, at the origin).
 // hash: 0 = mixed (default), 1 = the paper's xor of primes. threads: the
 // cycle's collision.threads (its tet hashing, point queries and border depths
@@ -60,9 +61,16 @@ Fixture dog_pair() {
   return f;
 }
 
-// Distinct buckets over distinct cells covered by the tets' boxes.
-double bucket_share(const World& world, const DetectionSettings& d) {
+// Of the cells the tets' boxes cover: the share in distinct buckets
+// (distinct buckets / distinct cells), and the cells a tet (the hash's
+// entries a tet: each costs a hash, a remainder and a push every cycle).
+struct CellFigures {
+  double bucket_share = 0.0;
+  double cells_per_tet = 0.0;
+};
+CellFigures cell_figures(const World& world, const DetectionSettings& d) {
   std::set<std::array<std::int64_t, 3>> cells;
+  std::size_t entries = 0, tets = 0;
   for (const Body& b : world.bodies)
     for (const Tet& t : b.mesh->tets) {
       Vec3 lo = b.x_m[t[0]], hi = lo;
@@ -70,21 +78,26 @@ double bucket_share(const World& world, const DetectionSettings& d) {
         lo = lo.cwiseMin(b.x_m[t[k]]);
         hi = hi.cwiseMax(b.x_m[t[k]]);
       }
+      ++tets;
       const auto cell = [&](double x) { return static_cast<std::int64_t>(std::floor(x / d.cell_size_m)); };
       for (auto i = cell(lo.x()); i <= cell(hi.x()); ++i)
         for (auto j = cell(lo.y()); j <= cell(hi.y()); ++j)
-          for (auto k = cell(lo.z()); k <= cell(hi.z()); ++k) cells.insert({i, j, k});
+          for (auto k = cell(lo.z()); k <= cell(hi.z()); ++k) {
+            cells.insert({i, j, k});
+            ++entries;
+          }
     }
-  std::size_t tets = 0;
-  for (const Body& b : world.bodies) tets += b.mesh->tet_count();
   const std::uint64_t n = d.table_size ? d.table_size : next_prime(2 * tets + 1);
   std::set<std::uint64_t> buckets;
   for (const auto& c : cells) buckets.insert(hash_cell(d.hash, c[0], c[1], c[2]) % n);
-  return static_cast<double>(buckets.size()) / static_cast<double>(cells.size());
+  return {static_cast<double>(buckets.size()) / static_cast<double>(cells.size()),
+          static_cast<double>(entries) / static_cast<double>(std::max<std::size_t>(tets, 1))};
 }
 
 void run_cycles(benchmark::State& state, Fixture& f, CollisionSettings settings) {
-  state.counters["bucket_share"] = bucket_share(f.world, settings.detection);
+  const CellFigures cells = cell_figures(f.world, settings.detection);
+  state.counters["bucket_share"] = cells.bucket_share;
+  state.counters["cells_per_tet"] = cells.cells_per_tet;
   CollisionCycle cycle(f.world, std::move(settings));
   std::size_t colliding = 0, tets = 0;
   for (const Body& b : f.world.bodies) tets += b.mesh->tet_count();
