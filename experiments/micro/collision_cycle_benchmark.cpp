@@ -71,15 +71,20 @@ struct CellFigures {
 CellFigures cell_figures(const World& world, const DetectionSettings& d) {
   std::set<std::array<std::int64_t, 3>> cells;
   std::size_t entries = 0, tets = 0;
+  // Cells cut as the detector cuts them (SpatialHash::cell_of), degenerate
+  // tets left out as it leaves them out; every body here has a partner.
+  const SpatialHash grid(d.cell_size_m, 1, d.hash);
   for (const Body& b : world.bodies)
-    for (const Tet& t : b.mesh->tets) {
+    for (std::size_t ti = 0; ti < b.mesh->tet_count(); ++ti) {
+      if (b.mesh->is_degenerate[ti]) continue;
+      const Tet& t = b.mesh->tets[ti];
       Vec3 lo = b.x_m[t[0]], hi = lo;
       for (int k = 1; k < 4; ++k) {
         lo = lo.cwiseMin(b.x_m[t[k]]);
         hi = hi.cwiseMax(b.x_m[t[k]]);
       }
       ++tets;
-      const auto cell = [&](double x) { return static_cast<std::int64_t>(std::floor(x / d.cell_size_m)); };
+      const auto cell = [&](double x) { return grid.cell_of(x); };
       for (auto i = cell(lo.x()); i <= cell(hi.x()); ++i)
         for (auto j = cell(lo.y()); j <= cell(hi.y()); ++j)
           for (auto k = cell(lo.z()); k <= cell(hi.z()); ++k) {
@@ -87,7 +92,9 @@ CellFigures cell_figures(const World& world, const DetectionSettings& d) {
             ++entries;
           }
     }
-  const std::uint64_t n = d.table_size ? d.table_size : next_prime(2 * tets + 1);
+  std::size_t all_tets = 0;  // the table is sized by every tet, as the detector sizes it
+  for (const Body& b : world.bodies) all_tets += b.mesh->tet_count();
+  const std::uint64_t n = d.table_size ? d.table_size : next_prime(2 * all_tets + 1);
   std::set<std::uint64_t> buckets;
   for (const auto& c : cells) buckets.insert(hash_cell(d.hash, c[0], c[1], c[2]) % n);
   return {static_cast<double>(buckets.size()) / static_cast<double>(cells.size()),

@@ -1,7 +1,8 @@
 // Peer comparison for the oracle issue: the same query, "which vertices of
-// each object lie inside a tet of another object", answered three ways on the
-// same deforming meshes, each rebuilding or refitting what it needs every
-// iteration (one iteration = one simulation step's worth):
+// each object lie inside a tet of another object", answered three ways (and
+// ours a fourth, BM_OursKeptTable) on the same deforming meshes, each
+// rebuilding or refitting what it needs every iteration (one iteration = one
+// simulation step's worth):
 //   BM_Ours:  the method's spatial hash of tets + exact perturbed point-in-tet
 //             (TetHashDetector: hash_tets, then query_point per vertex);
 //   BM_Cgal:  what a CGAL user writes: CGAL::box_intersection_d between point
@@ -16,7 +17,7 @@
 // Each iteration first deforms the second object (a small wave, different per
 // iteration) so no method can reuse last step's structure unchanged.
 // Counter `inside`: vertices found inside at the first iteration, whose
-// deformation (phase 0) all three share: each benchmark runs as many
+// deformation (phase 0) all of them share: each benchmark runs as many
 // iterations as its time asks, so their last geometries differ (counted
 // after the last, the dog pair once showed 1,542 / 1,541 / 1,542 for
 // geometries one wave apart). Boundary conventions differ: ours

@@ -181,10 +181,12 @@ class SpatialHash {
 
   double cell_size_m() const { return m_cell_size; }
   HashFunction function() const { return m_function; }
-  /// The grid index of coordinate x along any axis: floor(x / cell size), clamped.
+  /// The grid index of coordinate x along any axis: floor(x * (1 / cell size)),
+  /// clamped (the inverse is taken once; at a cell border it may differ from
+  /// floor(x / cell size) by one, the same for every caller).
   std::int64_t cell_of(double x) const {
     constexpr double kLimit = 1125899906842624.0;  // 2^50
-    // floor by truncation and a step down below zero: exactly std::floor for
+    // floor by truncation and a step down for negative non-integers: exactly std::floor for
     // every clamped value (its integer part is a double, so the truncation
     // is exact), and clamping first gives the same as after, the limits
     // being integers. std::floor on the baseline x86-64 target (no SSE4.1

@@ -16,6 +16,32 @@ TEST_CASE("the paper's hash is symmetric around the origin; the mixed one is not
   CHECK(hash_cell(HashFunction::Mixed, -10, -1, 9) % n != hash_cell(HashFunction::Mixed, -10, 1, -9) % n);
 }
 
+TEST_CASE("hash_cell keeps its values: both functions, negative cells, the clamp's +-2^50", "[hash]") {
+  // Computed outside this code base (Python integers, mod 2^64) from the
+  // formulas in spatial_hash.hpp's file comment: a rewrite of the hash (its
+  // parts, their incremental use) must not move any cell to another bucket,
+  // or every stored bucket figure and hash-collision count changes.
+  struct Case {
+    std::int64_t i, j, k;
+    std::uint64_t paper, mixed;
+  };
+  constexpr std::int64_t L = std::int64_t(1) << 50;
+  const Case cases[] = {
+      {0, 0, 0, 0x0000000000000000ULL, 0x0000000000000000ULL},
+      {1, 2, 3, 0x0000000008C58A46ULL, 0xA745E8D6002149E8ULL},
+      {-10, -1, 9, 0x0000000001EB3650ULL, 0xB84DA48114E39731ULL},
+      {-10, 1, -9, 0x0000000001EB3650ULL, 0x81773DAC2F6E8B4BULL},
+      {L, -L, 7, 0x2CF0000022D5FE01ULL, 0xBEA399C5A81B28A3ULL},
+      {-L, L, -1, 0xD30FFFFFFB060049ULL, 0x822AE8CEF8F03D68ULL},
+      {123456, -654321, 42, 0xFFFFFC3608CE8017ULL, 0xC338C63D70BD9C3BULL},
+  };
+  for (const Case& c : cases) {
+    INFO("cell " << c.i << ", " << c.j << ", " << c.k);
+    CHECK(hash_cell(HashFunction::Paper, c.i, c.j, c.k) == c.paper);
+    CHECK(hash_cell(HashFunction::Mixed, c.i, c.j, c.k) == c.mixed);
+  }
+}
+
 TEST_CASE("bucket occupancy near the origin: a slab of cells like a plate stack", "[hash]") {
   // 20 x 20 x 40 cells around the origin into a table of about twice as many
   // buckets: the mixed hash spreads them much better than the paper's.
@@ -79,7 +105,7 @@ TEST_CASE("spatial hash: every item is found in every cell it was inserted into"
   }
 }
 
-TEST_CASE("spatial hash: cell_of is floor(x / cell size), clamped to +-2^50", "[hash]") {
+TEST_CASE("spatial hash: cell_of is floor(x * (1 / cell size)), clamped to +-2^50", "[hash]") {
   // cell_of floors by truncation and a step down below zero; the reference
   // is std::floor, then the clamp, for edge values and a million random ones
   // of every magnitude and sign.
@@ -133,6 +159,7 @@ TEST_CASE("spatial hash: a box goes into exactly the buckets hash_cell gives its
             REQUIRE(found);
           }
       CHECK(cells == cells_walked);
+      CHECK(hash.entry_count() == cells_walked);  // an entry a cell, none lost or doubled
       CHECK(cells_walked >= 5 * 4 * 6);
       CHECK(hash.occupied_buckets() == reference.size());
     }
