@@ -70,7 +70,7 @@ void SpatialHash::build_parallel(WorkerPool& pool, std::size_t owners) {
   std::vector<std::size_t> first(owners + 1, 0);  // owner q's ranges start at first[q]
   for (std::size_t q = 0; q < owners; ++q) {
     first[q + 1] = first[q];
-    for (std::size_t p = 0; p < parts; ++p) first[q + 1] += m_part_entries[p * m_part_stride + q].size();
+    for (std::size_t p = 0; p < parts; ++p) first[q + 1] += part_list(p, q, owners).size();
   }
   m_sorted.resize(first[owners]);
   m_built_in_parts = true;
@@ -80,7 +80,7 @@ void SpatialHash::build_parallel(WorkerPool& pool, std::size_t owners) {
     for (std::size_t q = begin; q < end; ++q) {
       touched.clear();
       for (std::size_t p = 0; p < parts; ++p)
-        for (const Entry& e : m_part_entries[p * m_part_stride + q])
+        for (const Entry& e : part_list(p, q, owners))
           if (count_entry(e.bucket)) touched.push_back(e.bucket);
       auto cursor = static_cast<std::uint32_t>(first[q]);
       for (std::uint32_t b : touched) {
@@ -88,7 +88,7 @@ void SpatialHash::build_parallel(WorkerPool& pool, std::size_t owners) {
         m_buckets[b].start = cursor;  // the range's end, until filled
       }
       for (std::size_t p = parts; p-- > 0;) {
-        const std::vector<Entry>& list = m_part_entries[p * m_part_stride + q];
+        const std::vector<Entry>& list = part_list(p, q, owners);
         for (auto e = list.rbegin(); e != list.rend(); ++e) m_sorted[--m_buckets[e->bucket].start] = e->item;
       }
     }

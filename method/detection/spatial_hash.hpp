@@ -186,10 +186,10 @@ class SpatialHash {
   /// floor(x / cell size) by one, the same for every caller).
   std::int64_t cell_of(double x) const {
     constexpr double kLimit = 1125899906842624.0;  // 2^50
-    // floor by truncation and a step down for negative non-integers: exactly std::floor for
-    // every clamped value (its integer part is a double, so the truncation
-    // is exact), and clamping first gives the same as after, the limits
-    // being integers. std::floor on the baseline x86-64 target (no SSE4.1
+    // floor by truncation and a step down for negative non-integers:
+    // exactly std::floor for every clamped value (its integer part is a
+    // double, so the truncation is exact), and clamping first gives the same
+    // as after, the limits being integers. std::floor on the baseline x86-64 target (no SSE4.1
     // round) is a dozen instructions, six times a box.
     const double y = std::clamp(x * m_inverse_cell, -kLimit, kLimit);
     const auto t = static_cast<std::int64_t>(y);
@@ -254,6 +254,11 @@ class SpatialHash {
   }
   /// The owner of bucket b when owners hold 2^shift buckets each.
   static std::size_t owner_of(std::size_t b, int shift) { return b >> shift; }
+  /// Thread p's list of entries for owner q's buckets, with `owners` owners
+  /// (the layout is described at m_part_entries).
+  std::vector<Entry>& part_list(std::size_t p, std::size_t q, std::size_t owners) {
+    return m_part_entries[p * (owners + kHeaderPad) + q];
+  }
   /// insert_all_and_build()'s second half: each owner's buckets are counted,
   /// placed and filled from m_part_entries, owners spread over the threads.
   void build_parallel(WorkerPool& pool, std::size_t owners);
@@ -289,20 +294,19 @@ class SpatialHash {
   std::uint32_t m_epoch = 1;
   std::vector<Entry> m_entries;   // in insertion order
   std::vector<std::uint32_t> m_sorted;  // items grouped by bucket (after build)
-  // insert_all_and_build()'s lists: [p * m_part_stride + q] holds the entries
+  // insert_all_and_build()'s lists: part_list(p, q, owners) holds the entries
   // thread p made for the buckets owner q owns, in insertion order (kept
   // between epochs, so they do not regrow).
   std::vector<std::vector<Entry>> m_part_entries;
   std::vector<std::vector<std::uint32_t>> m_part_touched;  // per thread: its owner's buckets, in first-met order
-  // Thread p's lists start at m_part_entries[p * m_part_stride] (and its
-  // touched list at m_part_touched[p * kHeaderPad]): kHeaderPad empty list
+  // Thread p's lists start at m_part_entries[p * (owners + kHeaderPad)] (and
+  // its touched list at m_part_touched[p * kHeaderPad]): kHeaderPad empty list
   // headers between two threads' keep the headers each thread pushes to
   // (their end pointers change at every entry) off the other's cache lines.
   // With the headers adjacent, plates20's tet hash on 2 threads took
   // 1.5-1.7 ms against 1.2 ms on one; apart, 0.83-0.93 ms
   // (micro_collision_cycle, ms_hash_tets).
   static constexpr std::size_t kHeaderPad = (64 + sizeof(std::vector<Entry>) - 1) / sizeof(std::vector<Entry>);
-  std::size_t m_part_stride = 0;
   bool m_built_in_parts = false;  // this epoch's table came from insert_all_and_build() (m_entries is empty)
   int m_build_pass = 3;                 // 0..2 while a build is under way, 3 when built
   std::size_t m_build_cursor = 0;
@@ -327,15 +331,14 @@ std::size_t SpatialHash::insert_all_and_build(std::size_t n, BoxOf&& box_of, Wor
   const std::size_t least_owners = parts > 1 ? kOwnersPerThread * parts : 1;
   while (shift > 0 && owners_of(shift) < least_owners) --shift;
   const std::size_t owners = owners_of(shift);
-  m_part_stride = owners + kHeaderPad;
-  m_part_entries.resize(parts * m_part_stride);
+  m_part_entries.resize(parts * (owners + kHeaderPad));
   // Every list emptied here, not by its part: a part with an empty range
   // never runs, and must not leave last epoch's entries behind.
   for (std::vector<Entry>& list : m_part_entries) list.clear();
   std::vector<std::size_t> cells(parts, 0);
   pool.for_ranges(n, [&](int part, std::size_t begin, std::size_t end) {
     const std::size_t p = static_cast<std::size_t>(part);
-    std::vector<Entry>* lists = &m_part_entries[p * m_part_stride];
+    std::vector<Entry>* lists = &part_list(p, 0, owners);
     const int owner_shift = shift;  // in a register, not reloaded after every push
     Vec3 lo, hi;
     std::uint32_t item = 0;

@@ -106,7 +106,7 @@ TEST_CASE("spatial hash: every item is found in every cell it was inserted into"
 }
 
 TEST_CASE("spatial hash: cell_of is floor(x * (1 / cell size)), clamped to +-2^50", "[hash]") {
-  // cell_of floors by truncation and a step down below zero; the reference
+  // cell_of floors by truncation and a step down for negative non-integers; the reference
   // is std::floor, then the clamp, for edge values and a million random ones
   // of every magnitude and sign.
   constexpr double kLimit = 1125899906842624.0;  // 2^50
