@@ -255,7 +255,8 @@ SceneDesc parse_scene(const std::string& text, const std::filesystem::path& path
         scene.collision.cell_size_auto_factor = *factor;
       } else {
         const auto size = r.number("cell_size");
-        if (!(*size > 0.0)) r.fail("cell_size", "must be \"auto\", \"auto*K\" or a positive length");
+        if (!(*size > 0.0) || !std::isfinite(1.0 / *size))
+          r.fail("cell_size", "must be \"auto\", \"auto*K\" or a positive length (not so small that its inverse overflows)");
         scene.collision.cell_size_m = size;
       }
     }

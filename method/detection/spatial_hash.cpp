@@ -26,8 +26,10 @@ std::uint64_t next_prime(std::uint64_t n) {
 SpatialHash::SpatialHash(double cell_size_m, std::size_t table_size, HashFunction function)
     : m_cell_size(cell_size_m), m_inverse_cell(1.0 / cell_size_m), m_function(function),
       m_buckets(std::max<std::size_t>(table_size, 1)), m_modulo(m_buckets.size()) {
-  if (!(cell_size_m > 0.0) || !std::isfinite(cell_size_m))
-    throw std::invalid_argument("spatial hash cell size must be positive and finite");
+  // A subnormal size has an infinite inverse: cell_of(0) would be 0 x inf,
+  // a NaN cast to an integer (undefined).
+  if (!(cell_size_m > 0.0) || !std::isfinite(cell_size_m) || !std::isfinite(m_inverse_cell))
+    throw std::invalid_argument("spatial hash cell size must be positive and finite, and its inverse finite");
 }
 
 void SpatialHash::begin_epoch() {

@@ -125,6 +125,7 @@ TEST_CASE("scene file: malformed input names the file, the line and the problem"
       {"zero stack", obj + "stack = { count = 0 }\n", {}, "bad.toml", 3, "must lie in [1, 100000]"},
       {"object not array", "object = 3\n", {}, "bad.toml", 1, "[[object]]"},
       {"cell size", "[collision]\ncell_size = -1\n" + obj, {}, "bad.toml", 2, "\"auto*K\" or a positive length"},
+      {"cell size subnormal", "[collision]\ncell_size = 1e-310\n" + obj, {}, "bad.toml", 2, "its inverse overflows"},
       {"cell size auto*word", "[collision]\ncell_size = \"auto*big\"\n" + obj, {}, "bad.toml", 2, "\"auto*K\" (K > 0"},
       {"cell size auto*0", "[collision]\ncell_size = \"auto*0\"\n" + obj, {}, "bad.toml", 2, "\"auto*K\" (K > 0"},
       {"table size auto*-1", "[collision]\ntable_size = \"auto*-1\"\n" + obj, {}, "bad.toml", 2, "next prime above 2 K tets"},

@@ -6,6 +6,7 @@
 #include <limits>
 #include <random>
 #include <set>
+#include <stdexcept>
 
 using namespace tcb;
 
@@ -77,6 +78,18 @@ TEST_CASE("spatial hash: boxes, cells, epochs", "[hash]") {
   // A box across the scene (a diverged simulation) is refused, not allocated.
   CHECK_THROWS_AS(hash.insert_box(Vec3(-1e3, -1e3, -1e3), Vec3(1e3, 1e3, 1e3), 9), HashOverflow);
   CHECK(next_prime(2) == 2);
+}
+
+TEST_CASE("spatial hash: a cell size whose inverse is not finite is refused", "[hash]") {
+  // 1e-310 is subnormal: its inverse overflows to inf, and cell_of(0) would
+  // cast 0 x inf (NaN) to an integer.
+  CHECK_THROWS_AS(SpatialHash(1e-310, 7, HashFunction::Mixed), std::invalid_argument);
+  CHECK_THROWS_AS(SpatialHash(0.0, 7, HashFunction::Mixed), std::invalid_argument);
+  CHECK_THROWS_AS(SpatialHash(std::numeric_limits<double>::infinity(), 7, HashFunction::Mixed), std::invalid_argument);
+  // The smallest normal double still has a finite inverse (2^1022).
+  const SpatialHash tiny(std::numeric_limits<double>::min(), 7, HashFunction::Mixed);
+  CHECK(tiny.cell_of(0.0) == 0);
+  CHECK(tiny.cell_of(std::numeric_limits<double>::min()) == 1);
 }
 
 TEST_CASE("spatial hash: every item is found in every cell it was inserted into", "[hash]") {
