@@ -48,6 +48,14 @@ const SettingSpec kRehashStale{.name = "rehash_stale",
                                               "later step: every moving tet's box, and the tets that left their "
                                               "cells entered into a second table (ours, not the paper's)"};
 
+const SettingSpec kKeepTable{.name = "keep_table",
+                             .type = SettingSpec::Type::Boolean,
+                             .default_value = false,
+                             .description = "keep the tet hash from one cycle to the next and refresh it (every moving "
+                                            "tet's box, the tets that left their cells entered into a second table) "
+                                            "instead of hashing every tet afresh; the same contacts, less hashing "
+                                            "work (ours, not the paper's)"};
+
 const SettingSpec kPredictTasks{.name = "predict_tasks",
                                 .type = SettingSpec::Type::Boolean,
                                 .default_value = false,
@@ -60,6 +68,7 @@ InterruptibleHandler::Options interruptible_options(const MethodSettings& s, std
           .schedule = {.granularity = s.boolean("fine_tasks") ? TaskGranularity::fine_tasks() : TaskGranularity{},
                        .widen_stale = s.boolean("widen_stale"),
                        .rehash_stale = s.boolean("rehash_stale"),
+                       .keep_table = s.boolean("keep_table"),
                        .predict_tasks = s.boolean("predict_tasks")},
           .reserve_apply = s.boolean("reserve_apply"),
           .apply_first = s.boolean("apply_first")};
@@ -73,7 +82,7 @@ const std::vector<MethodInfo>& method_registry() {
       {.name = "interruptible",
        .description = "the paper's method: the cycle under a time budget, resumed next step, forces extrapolated "
                       "meanwhile",
-       .settings = {kFineTasks, kReserveApply, kApplyFirst, kWidenStale, kRehashStale, kPredictTasks},
+       .settings = {kFineTasks, kReserveApply, kApplyFirst, kWidenStale, kRehashStale, kKeepTable, kPredictTasks},
        .make =
            [](const MethodSettings& s) {
              return std::make_unique<InterruptibleHandler>(Stale::Extrapolate, interruptible_options(s));
@@ -81,7 +90,7 @@ const std::vector<MethodInfo>& method_registry() {
        .uses_budget = true},
       {.name = "interruptible_no_extrapolation",
        .description = "ablation: interruptible without force extrapolation",
-       .settings = {kFineTasks, kReserveApply, kApplyFirst, kWidenStale, kRehashStale, kPredictTasks},
+       .settings = {kFineTasks, kReserveApply, kApplyFirst, kWidenStale, kRehashStale, kKeepTable, kPredictTasks},
        .make =
            [](const MethodSettings& s) {
              return std::make_unique<InterruptibleHandler>(Stale::Nothing, interruptible_options(s));
@@ -102,7 +111,7 @@ const std::vector<MethodInfo>& method_registry() {
                     kFineTasks,
                     kReserveApply,
                     kApplyFirst,
-                    kWidenStale, kRehashStale, kPredictTasks},
+                    kWidenStale, kRehashStale, kKeepTable, kPredictTasks},
        .make =
            [](const MethodSettings& s) {
              return std::make_unique<InterruptibleHandler>(Stale::Track,
@@ -112,7 +121,7 @@ const std::vector<MethodInfo>& method_registry() {
       {.name = "interruptible_prioritized",
        .description = "variant (not in the paper; its future work): interruptible, but each cycle queries the "
                       "fastest points first, so they get their depth and force first",
-       .settings = {kFineTasks, kReserveApply, kApplyFirst, kWidenStale, kRehashStale, kPredictTasks},
+       .settings = {kFineTasks, kReserveApply, kApplyFirst, kWidenStale, kRehashStale, kKeepTable, kPredictTasks},
        .make =
            [](const MethodSettings& s) {
              InterruptibleHandler::Options options = interruptible_options(s);
@@ -122,7 +131,12 @@ const std::vector<MethodInfo>& method_registry() {
        .uses_budget = true},
       {.name = "full",
        .description = "the whole collision cycle every step, never interrupted (the paper's reference)",
-       .make = [](const MethodSettings&) { return std::make_unique<FullHandler>(DetectionMode::SpatialHash); }},
+       .settings = {kKeepTable},
+       .make =
+           [](const MethodSettings& s) {
+             return std::make_unique<FullHandler>(DetectionMode::SpatialHash,
+                                                  CycleSchedule{.keep_table = s.boolean("keep_table")});
+           }},
       {.name = "every_nth",
        .description = "a full cycle every n-th step, the last forces held in between",
        .settings = {{.name = "n",

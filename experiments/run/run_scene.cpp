@@ -249,6 +249,8 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
   run["world"] = world_json(scene, world);
   run["peak_memory"] = peak_memory_json(world);
   run["collision_memory"] = collision_memory_json(world, *handler);
+  const auto counts = handler->cycle_counts();
+  run["cycles"] = counts ? Json{{"begun", counts->begun}, {"tet_hashes_fresh", counts->tet_hashes_fresh}} : Json(nullptr);
   run["summary"] = summary;
   if (replay) replay->finish();
   record.finish(run);

@@ -55,7 +55,8 @@ TetHashDetector::TetHashDetector(const World& world, const DetectionSettings& se
 }
 
 std::size_t TetHashDetector::memory_bytes() const {
-  return m_hash.memory_bytes() + m_overflow.memory_bytes() + heap_bytes(m_hashed_cells) + heap_bytes(m_body_tet_offset) +
+  return m_hash.memory_bytes() + m_overflow.memory_bytes() + heap_bytes(m_hashed_cells) + heap_bytes(m_left_cells) +
+         heap_bytes(m_body_tet_offset) +
          heap_bytes(m_owner) + heap_bytes(m_boxes) + heap_bytes(m_scratch.tested);
 }
 
@@ -146,19 +147,62 @@ std::uint64_t TetHashDetector::walk_tets(const World& world, const CollisionPair
   return work;
 }
 
+bool TetHashDetector::within_hashed_cells(std::uint32_t id) const {
+  const std::int64_t* cells = &m_hashed_cells[6 * std::size_t(id)];
+  bool inside = true;
+  for (int a = 0; a < 3; ++a)
+    inside = inside && m_hash.cell_of(m_boxes[id].lo[a]) >= cells[a] && m_hash.cell_of(m_boxes[id].hi[a]) <= cells[3 + a];
+  return inside;
+}
+
 std::uint64_t TetHashDetector::refresh_some_tets(const World& world, const CollisionPairs& pairs,
                                                  std::size_t max_tets, bool& done) {
   // The current box is stored either way: queries reject with it.
   const std::uint64_t work = walk_tets(world, pairs, true, max_tets, done, [&](std::uint32_t id) {
-    const std::int64_t* cells = &m_hashed_cells[6 * std::size_t(id)];
-    bool inside = true;
-    for (int a = 0; a < 3; ++a)
-      inside = inside && m_hash.cell_of(m_boxes[id].lo[a]) >= cells[a] && m_hash.cell_of(m_boxes[id].hi[a]) <= cells[3 + a];
-    if (inside) return work::kTetBox;
+    if (within_hashed_cells(id)) return work::kTetBox;
     ++m_overflow_tets;
     return work::kTetBox + work::kCellInsert * m_overflow.insert_box(m_boxes[id].lo, m_boxes[id].hi, id);
   });
   if (done) m_overflow_active = m_overflow_tets > 0;
+  return work;
+}
+
+std::uint64_t TetHashDetector::refresh_tets(const World& world, const CollisionPairs& pairs, WorkerPool* pool) {
+  // walk_tets()'s choice of tets, by global id: ids run body by body, tet by
+  // tet, so ascending ids are the walk's order.
+  m_left_cells.assign(m_boxes.size(), 0);
+  const auto check = [&](std::size_t begin, std::size_t end) {
+    std::uint64_t visited = 0;
+    for (std::size_t id = begin; id < end; ++id) {
+      const std::size_t b = static_cast<std::size_t>(m_owner[id]);
+      const Body& body = world.bodies[b];
+      const std::size_t t = id - m_body_tet_offset[b];
+      if (!pairs.has_partner(b) || !can_move(body) || body.mesh->is_degenerate[t]) continue;
+      store_box(body, t, static_cast<std::uint32_t>(id));
+      m_left_cells[id] = !within_hashed_cells(static_cast<std::uint32_t>(id));
+      ++visited;
+    }
+    return visited;
+  };
+  std::uint64_t work = 0;
+  if (pool && pool->threads() > 1) {
+    std::vector<std::uint64_t> visited(static_cast<std::size_t>(pool->threads()), 0);
+    pool->for_ranges(m_boxes.size(), [&](int part, std::size_t begin, std::size_t end) {
+      visited[static_cast<std::size_t>(part)] = check(begin, end);
+    });
+    for (const std::uint64_t v : visited) work += work::kTetBox * v;
+  } else {
+    work = work::kTetBox * check(0, m_boxes.size());
+  }
+  // The overflow's inserts on this thread, in id order: its buckets list
+  // their tets by ascending id, as queries need.
+  for (std::size_t id = 0; id < m_boxes.size(); ++id) {
+    if (!m_left_cells[id]) continue;
+    ++m_overflow_tets;
+    work += work::kCellInsert * m_overflow.insert_box(m_boxes[id].lo, m_boxes[id].hi, static_cast<std::uint32_t>(id));
+  }
+  m_hash_body = world.bodies.size();
+  m_overflow_active = m_overflow_tets > 0;
   return work;
 }
 

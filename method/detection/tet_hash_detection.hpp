@@ -80,8 +80,16 @@ class TetHashDetector {
   void begin_refresh();
   std::uint64_t refresh_some_tets(const World& world, const CollisionPairs& pairs, std::size_t max_tets, bool& done);
   SpatialHash& mutable_overflow() { return m_overflow; }
+  /// The whole refresh at once (after begin_refresh()), its tets' boxes and
+  /// cell checks on the pool's threads (or the caller's without one), the
+  /// overflow's inserts in the serial walk's order: the same boxes, overflow
+  /// and work as refresh_some_tets() to the end, on any thread count. Then
+  /// build the overflow.
+  std::uint64_t refresh_tets(const World& world, const CollisionPairs& pairs, WorkerPool* pool = nullptr);
   /// Tets in the overflow of the last refresh (0 without one).
   std::size_t overflow_tets() const { return m_overflow_tets; }
+  /// Tets of every body (the global id range), hashed or not.
+  std::size_t tet_count() const { return m_boxes.size(); }
   /// Stage 2 for one vertex; adds its work units to `work`. `margin_m` > 0
   /// (widened query): tets may have moved up to that far (m, max norm) since
   /// they were hashed, so every cell within margin_m of the point is
@@ -124,11 +132,14 @@ class TetHashDetector {
   void store_box(const Body& body, std::size_t t, std::uint32_t id);
   /// With refresh enabled, keeps the cells tet `id`'s stored box was hashed in.
   void record_hashed_cells(std::uint32_t id);
+  /// Whether tet `id`'s stored box stays within the cells it was hashed in.
+  bool within_hashed_cells(std::uint32_t id) const;
   SpatialHash m_hash;
   SpatialHash m_overflow;                             // refresh only; allocated by enable_refresh()
   bool m_overflow_active = false;                     // queries search m_overflow too
   std::size_t m_overflow_tets = 0;
   std::vector<std::int64_t> m_hashed_cells;           // per global tet: cell range it was hashed in (refresh only)
+  std::vector<char> m_left_cells;                     // refresh_tets(): per global tet, its box left its cells
   std::vector<std::uint32_t> m_body_tet_offset;       // global tet id = offset[body] + tet
   std::vector<std::int32_t> m_owner;                  // global tet id -> body (dense: the first filter)
   // A tet's AABB (at hashing time, or at the last refresh), lo and hi side by

@@ -18,11 +18,12 @@ CollisionCycle::CollisionCycle(const World& world, CollisionSettings settings, D
       m_order(schedule.order),
       m_widen_stale(schedule.widen_stale),
       m_rehash_stale(schedule.rehash_stale && mode == DetectionMode::SpatialHash),
+      m_keep_table(schedule.keep_table && mode == DetectionMode::SpatialHash),
       m_predict_tasks(schedule.predict_tasks),
       m_pairs(world),
       m_detector(world, m_settings.detection),
       m_surface(world, m_settings.detection.cell_size_m, m_settings.detection.hash) {
-  if (m_rehash_stale) m_detector.enable_refresh();
+  if (m_rehash_stale || m_keep_table) m_detector.enable_refresh();
   if (mode == DetectionMode::SpatialHash) warm_up(world);
   if (m_settings.threads > 1 && mode == DetectionMode::SpatialHash) {
     m_pool = std::make_unique<WorkerPool>(m_settings.threads);
@@ -73,6 +74,7 @@ void CollisionCycle::warm_up(const World& world) {
 void CollisionCycle::begin(const World& world) {
   m_tet_margin_m = m_surface_margin_m = m_tet_motion_m = 0.0;  // a new tet hash starts now
   m_refresh_wait = false;
+  m_opening_refresh = false;
   m_margin_step = world.step_index;
   for (const Contact& c : m_contacts) m_lookup[c.object][c.vertex] = -1;
   m_contacts.clear();
@@ -84,9 +86,23 @@ void CollisionCycle::begin(const World& world) {
 }
 
 void CollisionCycle::enter_detection(const World& world) {
-  enter(m_mode == DetectionMode::SpatialHash ? Stage::HashTets : Stage::QueryPoints, world);
-  if (m_stage == Stage::HashTets && m_granularity.fine()) m_detector.begin_hash();
   m_hash_begin_step = world.step_index;
+  m_opening_refresh = m_keep_table && m_table_kept &&
+                      static_cast<double>(m_detector.overflow_tets()) <=
+                          kKeepTableRehashShare * static_cast<double>(m_detector.tet_count());
+  if (m_opening_refresh) {
+    // The refresh's tasks, then the queries from the first point (the
+    // refresh's completion below).
+    enter(Stage::RefreshTets, world);
+    m_resume_stage = Stage::QueryPoints;
+    m_resume_cursor = 0;
+    m_motion_at_refresh_m = m_tet_motion_m;
+    m_detector.begin_refresh();
+    return;
+  }
+  enter(m_mode == DetectionMode::SpatialHash ? Stage::HashTets : Stage::QueryPoints, world);
+  if (m_stage == Stage::HashTets) m_table_kept = false;  // until this hash completes
+  if (m_stage == Stage::HashTets && m_granularity.fine()) m_detector.begin_hash();
 }
 
 bool CollisionCycle::needs_refresh(const World& world) const {
@@ -272,6 +288,8 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
         if (!m_granularity.fine()) {
           work = m_detector.hash_tets(world, m_pairs, m_pool.get());
           m_fresh_step = world.step_index;
+          m_table_kept = true;
+          ++m_fresh_tet_hashes;
           enter(Stage::QueryPoints, world);
         } else {
           bool hashed = false;
@@ -285,14 +303,17 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
       case Stage::BuildTetHash:
         if (m_detector.mutable_hash().build_some(std::max<std::size_t>(1, m_granularity.build_visits_per_task))) {
           m_fresh_step = m_hash_begin_step;  // tets hashed in earlier steps are stale: refreshed if so
+          m_table_kept = true;
+          ++m_fresh_tet_hashes;
           enter(Stage::QueryPoints, world);
         }
         break;
       case Stage::RefreshTets: {
-        bool refreshed = false;
-        const std::size_t per_task =
-            m_granularity.fine() ? m_granularity.tets_per_task : std::numeric_limits<std::size_t>::max();
-        work = m_detector.refresh_some_tets(world, m_pairs, per_task, refreshed);
+        bool refreshed = true;
+        if (m_granularity.fine())
+          work = m_detector.refresh_some_tets(world, m_pairs, m_granularity.tets_per_task, refreshed);
+        else  // the paper's granularity: one task, on the pool when there is one
+          work = m_detector.refresh_tets(world, m_pairs, m_pool.get());
         if (refreshed) {
           m_detector.mutable_overflow().begin_build();
           m_stage = Stage::BuildOverflow;
@@ -303,13 +324,22 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
         const std::size_t per_task =
             m_granularity.fine() ? m_granularity.build_visits_per_task : std::numeric_limits<std::size_t>::max();
         if (m_detector.mutable_overflow().build_some(per_task)) {
+          // The motion since the refresh began is what its boxes may miss.
+          m_tet_motion_m -= m_motion_at_refresh_m;
+          m_tet_margin_m = std::min(m_tet_motion_m, 0.5 * m_settings.detection.cell_size_m);
+          if (m_opening_refresh) {
+            // keep_table: the refresh stands for the cycle's hash, and is
+            // dated as a fine hash is, by the step it began in (a later
+            // rehash_stale refresh then covers what moved since).
+            m_opening_refresh = false;
+            m_fresh_step = m_hash_begin_step;
+            enter(Stage::QueryPoints, world);
+            break;
+          }
           // A refresh that spanned steps holds its first tets' older
           // positions; it is not restarted (that could never end): the
           // table counts as this step's.
           m_fresh_step = world.step_index;
-          // The motion since the refresh began is what its boxes may miss.
-          m_tet_motion_m -= m_motion_at_refresh_m;
-          m_tet_margin_m = std::min(m_tet_motion_m, 0.5 * m_settings.detection.cell_size_m);
           m_stage = m_resume_stage;
           m_cursor = m_resume_cursor;
           m_refresh_wait = true;  // the resumed stage runs a task before the next refresh

@@ -41,6 +41,9 @@
 ///                then BuildOverflow, and the interrupted stage resumes where
 ///                it stopped. Reported under hash_tets.
 ///   BuildOverflow the overflow table built, as BuildTetHash
+///   (setting keep_table, ours) a cycle whose last table is kept opens with
+///                RefreshTets and BuildOverflow in place of HashTets (and
+///                BuildTetHash); then QueryPoints from its first point
 /// A task always reads the world's current positions: work resumed in a later
 /// step uses the positions of that step. In particular a point detected in an
 /// earlier step is re-detected (one point query) before its border-edge work:
@@ -157,6 +160,21 @@ struct CycleSchedule {
   /// motion since the refresh began. The surface table is not refreshed
   /// (widen_stale covers it).
   bool rehash_stale = false;
+  /// Kept tet table (setting keep_table, ours; not the paper's schedule,
+  /// which hashes every tet afresh in every cycle): a cycle after the first
+  /// opens with a refresh of the table the last one built (stage RefreshTets:
+  /// every movable tet's current box, the tets that left the cells they were
+  /// hashed in entered into the overflow table), as a tree library refits
+  /// its tree instead of rebuilding it. Queries then find exactly what a
+  /// fresh hash finds (tet_hash_detection.hpp, 1b), so a cycle that runs
+  /// within one step has the paper's contacts, depths and forces; only its
+  /// hash_tets work and time differ (a unit a movable tet and one an overflow
+  /// cell, against one a cell of every tet). The table is hashed afresh in
+  /// the first cycle, after a hash that did not complete, and whenever the
+  /// last refresh put more than kKeepTableRehashShare of all tets into the
+  /// overflow: the overflow then costs about what a fresh hash would (each
+  /// of its tets is inserted again, and every query searches two tables).
+  bool keep_table = false;
   /// Predicted stops (setting predict_tasks, ours): under a wall budget the
   /// paper polls after a task and so overruns by the part of the last task
   /// past the limit. With this set, after every task the cycle also stops
@@ -168,6 +186,10 @@ struct CycleSchedule {
   /// also holds the handler's work before the cycle, is not counted).
   bool predict_tasks = false;
 };
+
+/// keep_table: the share of all tets in the last refresh's overflow above
+/// which the next cycle hashes afresh. A judgement, see the setting.
+inline constexpr double kKeepTableRehashShare = 0.125;
 
 class CollisionCycle {
  public:
@@ -220,6 +242,9 @@ class CollisionCycle {
   /// so the count (not the work, nor where budgets stop) depends on the
   /// thread count.
   std::int64_t tasks_done() const { return m_tasks; }
+  /// How many tet hashes completed afresh (HashTets, or BuildTetHash's end)
+  /// since construction; with keep_table, the other cycles refreshed.
+  std::int64_t fresh_tet_hashes() const { return m_fresh_tet_hashes; }
   /// How many surface hashes ran on the threads as a whole (see above).
   std::int64_t parallel_surface_hashes() const { return m_parallel_surface_hashes; }
   /// Heap bytes of everything the cycle holds: both hashes, boxes, queries,
@@ -261,6 +286,9 @@ class CollisionCycle {
   WorkOrder m_order;
   bool m_widen_stale;
   bool m_rehash_stale;
+  bool m_keep_table;
+  bool m_table_kept = false;       // keep_table: the last tet hash completed, so the next cycle may refresh it
+  bool m_opening_refresh = false;  // keep_table: the running refresh stands for the cycle's hash
   bool m_predict_tasks;
   std::array<double, kCostStages> m_task_ms{};  // predict_tasks: recent task time per reported stage
   std::int64_t m_fresh_step = -1;  // rehash_stale: the step whose positions the tet table (or last refresh) holds
@@ -308,6 +336,7 @@ class CollisionCycle {
   std::vector<SurfaceHash::QueryScratch> m_surface_scratch;  // [0] the serial path's; with a pool, one a thread
   std::vector<std::uint64_t> m_surface_work;  // the threads' surface hash: each triangle's work, in walk order
   std::int64_t m_parallel_surface_hashes = 0;
+  std::int64_t m_fresh_tet_hashes = 0;
   std::int64_t m_depth_check_step = -1;  // the step depth_batch_allowed() last decided at
   bool m_depth_batchable = false;
   std::array<double, kCostStages> m_batch_item_ms{};  // wall budgets: recent batch time per item, per stage

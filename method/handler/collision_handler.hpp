@@ -78,6 +78,14 @@ class CollisionHandler {
   /// scratch; not the world), for run.json's memory per tet; nullopt where a
   /// method does not count it.
   virtual std::optional<std::size_t> memory_bytes() const { return std::nullopt; }
+  /// For methods that run the collision cycle: cycles begun, and how many
+  /// of their tet tables were hashed afresh (all but the refreshed ones of
+  /// the setting keep_table); nullopt for the others.
+  struct CycleCounts {
+    std::int64_t begun = 0;
+    std::int64_t tet_hashes_fresh = 0;
+  };
+  virtual std::optional<CycleCounts> cycle_counts() const { return std::nullopt; }
 };
 
 }  // namespace tcb

@@ -23,6 +23,9 @@ class CycleHandler : public CollisionHandler {
   StepReport step(World& world, Budget& budget) final;
   const std::vector<Contact>& contacts() const override;
   std::optional<std::size_t> memory_bytes() const override { return m_cycle->memory_bytes(); }
+  std::optional<CycleCounts> cycle_counts() const override {
+    return CycleCounts{m_cycle->number(), m_cycle->fresh_tet_hashes()};
+  }
   /// The clock the stage costs are read on (tests inject a ticking one);
   /// after init().
   void set_clock(ClockMs clock) { m_cycle->set_clock(std::move(clock)); }

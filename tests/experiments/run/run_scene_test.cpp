@@ -282,6 +282,53 @@ TEST_CASE("without contacts between bodies implicit and explicit response are th
     REQUIRE(without_timing(lines[0][0], lines[0][i]) == without_timing(lines[1][0], lines[1][i]));
 }
 
+TEST_CASE("full with keep_table is full's run apart from timings and the hashing work", "[run][keep_table]") {
+  // plates20 settles into a resting stack: its tets barely leave their
+  // cells, so most cycles refresh the kept table. Every column but the
+  // timings and the work must be full's, bit for bit.
+  const fs::path a = fresh_dir("keep_a"), b = fresh_dir("keep_b");
+  const auto path = resolve_scene("plates20", default_scene_dirs());
+  for (const auto& dir : {a, b}) {
+    const SceneDesc scene = load_scene_file(path, {std::string("method.full.keep_table=") + (dir == a ? "false" : "true")});
+    RunOptions options;
+    options.method = "full";
+    options.steps = 40;
+    options.out_dir = dir;
+    REQUIRE(run_scene(scene, options).status == "ok");
+  }
+  const auto la = lines_of(a / "steps.csv"), lb = lines_of(b / "steps.csv");
+  REQUIRE(la.size() == 41);
+  REQUIRE(la[0] == lb[0]);
+  const auto names = cells_of(la[0]);
+  const auto is_work = [](const std::string& name) {
+    return name == "work_units" || (name.size() > 5 && name.substr(name.size() - 5) == "_work");
+  };
+  std::uint64_t hash_work[2] = {0, 0};
+  const auto hash_column = std::find(names.begin(), names.end(), "stage_hash_tets_work") - names.begin();
+  REQUIRE(hash_column < static_cast<std::ptrdiff_t>(names.size()));
+  for (std::size_t i = 1; i < la.size(); ++i) {
+    const auto ca = cells_of(la[i]), cb = cells_of(lb[i]);
+    REQUIRE(ca.size() == names.size());
+    for (std::size_t k = 0; k < names.size(); ++k) {
+      const std::string& n = names[k];
+      if (is_work(n) || (n.size() >= 3 && n.substr(n.size() - 3) == "_ms") || n == "handling_switches") continue;
+      INFO("step " << i << " column " << n);
+      REQUIRE(ca[k] == cb[k]);
+    }
+    hash_work[0] += std::stoull(ca[hash_column]);
+    hash_work[1] += std::stoull(cb[hash_column]);
+  }
+  CHECK(hash_work[1] < hash_work[0] / 2);
+  const auto ra = nlohmann::json::parse(read_file(a / "run.json")), rb = nlohmann::json::parse(read_file(b / "run.json"));
+  CHECK(ra["cycles"]["begun"] == 40);
+  CHECK(ra["cycles"]["tet_hashes_fresh"] == 40);  // the paper's schedule: every cycle hashes afresh
+  CHECK(rb["cycles"]["begun"] == 40);
+  CHECK(rb["cycles"]["tet_hashes_fresh"].get<int>() < 10);
+  CHECK(rb["settings"]["keep_table"] == true);
+  fs::remove_all(a);
+  fs::remove_all(b);
+}
+
 TEST_CASE("under a work budget two runs are identical apart from timings, whatever the thread count", "[run]") {
   // The paper's task granularity, our fine tasks (resumable hashing), with
   // rehashed stale tets, and our fastest-first order. The second run answers
@@ -289,16 +336,18 @@ TEST_CASE("under a work budget two runs are identical apart from timings, whatev
   // where the budget stops, and everything that follows must not change.
   struct Case {
     std::string method;
-    bool fine, rehash;
+    bool fine, rehash, keep;
   };
-  for (const auto& [method, fine, rehash] : std::vector<Case>{{"interruptible", false, false},
-                                                             {"interruptible", true, false},
-                                                             {"interruptible", true, true},
-                                                             {"interruptible_prioritized", false, false}}) {
-  INFO(method << " fine_tasks " << fine << " rehash_stale " << rehash);
+  for (const auto& [method, fine, rehash, keep] : std::vector<Case>{{"interruptible", false, false, false},
+                                                                   {"interruptible", true, false, false},
+                                                                   {"interruptible", true, true, false},
+                                                                   {"interruptible", false, false, true},
+                                                                   {"interruptible_prioritized", false, false, false}}) {
+  INFO(method << " fine_tasks " << fine << " rehash_stale " << rehash << " keep_table " << keep);
   const fs::path a = fresh_dir("work_a"), b = fresh_dir("work_b");
   const std::vector<std::string> sets = {"method." + method + ".fine_tasks=" + (fine ? "true" : "false"),
-                                         "method." + method + ".rehash_stale=" + (rehash ? "true" : "false")};
+                                         "method." + method + ".rehash_stale=" + (rehash ? "true" : "false"),
+                                         "method." + method + ".keep_table=" + (keep ? "true" : "false")};
   std::vector<std::string> threaded = sets;
   threaded.push_back("collision.threads=3");
   const auto path = resolve_scene("plates20", default_scene_dirs());
@@ -330,6 +379,12 @@ TEST_CASE("under a work budget two runs are identical apart from timings, whatev
   CHECK(run["summary"]["cycle_steps"]["max"].get<double>() > 1.0);
   CHECK(run["settings"]["fine_tasks"] == fine);
   CHECK(run["settings"]["rehash_stale"] == rehash);
+  CHECK(run["settings"]["keep_table"] == keep);
+  // Cycles that refreshed the last table instead of hashing afresh: only
+  // with keep_table (else every cycle hashes, but the last may not have finished).
+  const auto fresh = run["cycles"]["tet_hashes_fresh"].get<std::int64_t>(), begun = run["cycles"]["begun"].get<std::int64_t>();
+  if (keep) CHECK(begun > 2);  // cycles after the first, to refresh
+  CHECK((fresh < begun - 1) == keep);
   CHECK(run["collision"]["threads"] == 1);
   CHECK(nlohmann::json::parse(read_file(b / "run.json"))["collision"]["threads"] == 3);
   // The largest charge: the paper's one hashing task, or a small piece of it.

@@ -17,6 +17,7 @@
 
 #include "method/geometry/perturbed_predicates.hpp"
 #include "method/handler/work_units.hpp"
+#include "sim/parallel/worker_pool.hpp"
 #include "tests/method/test_worlds.hpp"
 
 using namespace tcb;
@@ -101,6 +102,36 @@ TEST_CASE("a refreshed tet hash finds exactly brute force's points after any mot
         }
         if (m.cells >= 2.0 && !truth.empty()) CHECK(stale != truth);  // the refresh had something to find
       }
+}
+
+TEST_CASE("the whole refresh at once, on 1 or 2 threads, is the piecewise refresh: same overflow, work and answers",
+          "[detection][rehash][threads]") {
+  for (const auto& [name, scene] : test::collision_scenes())
+    for (const double jitter : {0.0, 0.3, 1.5}) {
+      INFO(name << ", jitter " << jitter << " cells");
+      World world = build_world(scene);
+      const CollisionSettings settings = test::settings_of(world, scene);
+      const CollisionPairs pairs(world);
+      TetHashDetector piecewise(world, settings.detection), whole(world, settings.detection);
+      piecewise.enable_refresh();
+      whole.enable_refresh();
+      piecewise.hash_tets(world, pairs);
+      whole.hash_tets(world, pairs);
+      move_bodies(world, settings.detection.cell_size_m, 0.2, jitter);
+      const std::uint64_t piecewise_work = refresh(world, pairs, piecewise, 5);
+      const Points answers = query_all(world, pairs, &piecewise);
+      CHECK(answers == query_all(world, pairs, nullptr));
+      for (const int threads : {1, 2}) {
+        INFO("threads " << threads);
+        WorkerPool pool(threads);
+        whole.begin_refresh();
+        CHECK(whole.refresh_tets(world, pairs, &pool) == piecewise_work);
+        whole.mutable_overflow().build();
+        CHECK(whole.overflow_tets() == piecewise.overflow_tets());
+        CHECK(query_all(world, pairs, &whole) == answers);
+      }
+      if (jitter > 0.0) CHECK(piecewise.overflow_tets() > 0);
+    }
 }
 
 TEST_CASE("a new hash drops the overflow; fixed passive bodies are never revisited", "[detection][rehash]") {

@@ -508,3 +508,95 @@ TEST_CASE("a refresh longer than a step cannot stall the cycle: one task a step,
     CHECK(found(cycle) == found(paper));
   }
 }
+
+TEST_CASE("a kept table finds exactly what a fresh hash finds, cycle after cycle, for less hashing work",
+          "[cycle][keep_table]") {
+  // One cycle a step, the last body moved between steps: a little (0.02
+  // cell, a step's motion; most of its tets stay in their cells), then far (2.3 cells: every
+  // one of its tets leaves them). keep_table's contacts must be the paper's
+  // in every field, its hash work less once it refreshes, and the cycle
+  // after the far move must hash afresh (the overflow holds more than the
+  // share) and so be charged exactly the paper's hash work. On 2 threads,
+  // every cycle's work must be 1 thread's.
+  for (const auto& [name, scene] : test::collision_scenes()) {
+    std::vector<std::uint64_t> one_thread_work;  // the kept cycle's hash work, cycle by cycle
+    for (const int threads : {1, 2}) {
+      INFO(name << ", threads " << threads);
+      World w = build_world(scene);
+      CollisionSettings settings = test::settings_of(w, scene);
+      settings.threads = threads;
+      CollisionCycle paper(w, settings);
+      CollisionCycle kept(w, settings, DetectionMode::SpatialHash, {.keep_table = true});
+      const double cell_m = settings.detection.cell_size_m;
+      const std::vector<double> moves = {0.0, 0.02, 0.02, -0.03, 2.3, 0.0, -2.3, 0.02};
+      Body& moved = w.bodies.back();
+      const std::size_t moved_tets = moved.mesh->tet_count();
+      for (std::size_t c = 0; c < moves.size(); ++c) {
+        INFO("cycle " << c << ", move " << moves[c] << " cell");
+        for (Vec3& x : moved.x_m) x.x() += moves[c] * cell_m;
+        ++w.step_index;
+        std::uint64_t hash_work[2] = {0, 0};
+        int i = 0;
+        for (CollisionCycle* cycle : {&paper, &kept}) {
+          cycle->start_step_costs();
+          cycle->begin(w);
+          Budget unlimited = Budget::unlimited();
+          REQUIRE(cycle->advance(w, unlimited));
+          hash_work[i++] = cycle->step_costs().work_of(CostStage::HashTets);
+        }
+        REQUIRE(same_contacts(kept.contacts(), paper.contacts()));
+        // The refresh on the threads: the same work (its boxes checked in
+        // parallel, the overflow filled in id order).
+        if (threads == 1) one_thread_work.push_back(hash_work[1]);
+        else CHECK(hash_work[1] == one_thread_work.at(c));
+        const bool after_far = c > 0 && std::abs(moves[c - 1]) > 1.0;
+        if (c == 0 || after_far) {
+          CHECK(hash_work[1] == hash_work[0]);  // hashed afresh: the paper's work
+        } else {
+          CHECK(hash_work[1] < hash_work[0]);  // refreshed
+        }
+        if (std::abs(moves[c]) > 1.0) {  // every tet of the moved body left its cells
+          CHECK(hash_work[1] > moved_tets);
+        }
+      }
+      CHECK_FALSE(paper.contacts().empty());
+    }
+  }
+}
+
+TEST_CASE("a kept table's refresh in resumable tasks across steps ends with the paper's contacts",
+          "[cycle][keep_table][rehash]") {
+  // One task a call (a work budget of 0), a new step every 7 calls; the last
+  // body moved between cycles only, so each cycle's positions are fixed and
+  // its contacts must equal a fresh paper's cycle's. With rehash_stale too,
+  // the refresh that opens a cycle is dated by the step it began in, so a
+  // refresh before the first query follows when it spanned steps.
+  for (const bool rehash : {false, true}) {
+    for (const TaskGranularity granularity : {TaskGranularity{}, TaskGranularity{4, 8, 4}}) {
+      INFO("rehash_stale " << rehash << ", tets a task " << granularity.tets_per_task);
+      const test::TestScene scene = test::collision_scenes()[0].second;
+      World world = build_world(scene);
+      CollisionCycle cycle(world, test::settings_of(world, scene), DetectionMode::SpatialHash,
+                           {.granularity = granularity, .rehash_stale = rehash, .keep_table = true});
+      int opening_refreshes = 0;
+      for (int c = 0; c < 4; ++c) {
+        for (Vec3& x : world.bodies[1].x_m) x.y() += 0.02 * test::settings_of(world, scene).detection.cell_size_m;
+        ++world.step_index;
+        cycle.begin(world);
+        opening_refreshes += cycle.stage() == CollisionCycle::Stage::RefreshTets;
+        for (int call = 0; !cycle.done(); ++call) {
+          REQUIRE(call < 1000000);
+          if (call % 7 == 6) ++world.step_index;  // positions unchanged within the cycle
+          Budget zero = Budget::work_units(0);
+          cycle.advance(world, zero);
+        }
+        CollisionCycle paper(world, test::settings_of(world, scene));
+        paper.begin(world);
+        Budget unlimited = Budget::unlimited();
+        REQUIRE(paper.advance(world, unlimited));
+        CHECK(found(cycle) == found(paper));
+      }
+      CHECK(opening_refreshes == 3);  // every cycle after the first
+    }
+  }
+}
