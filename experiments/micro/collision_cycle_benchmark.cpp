@@ -9,6 +9,14 @@
 // occupied cells share a bucket; lower = more hash collisions).
 // cells_per_tet: cells a tet's box covers, so hash entries a tet a cycle.
 // BM_Plates20/<hash>/<threads>: the plates20 scene (15,360 tets, at the origin).
+// BM_DogPairMoving/<keep>/<threads>, BM_Plates20Moving/<keep>: the same
+// scenes moving between cycles as a step would move them (dog_b, and every
+// other plate, translated along x by 1 mm a cycle, back and forth every 32
+// cycles: 1 m/s at dt 1 ms, a few % of a cell), untimed; keep 0 is the
+// paper's schedule (every cycle hashes afresh), keep 1 our keep_table (the
+// last table refreshed; hashed afresh when the overflow grows past
+// kKeepTableRehashShare of the tets). fresh_hash_share: the cycles that
+// hashed afresh.
 // hash: 0 = mixed (default), 1 = the paper's xor of primes. threads: the
 // cycle's collision.threads (its tet hashing, point queries and border depths
 // in parallel; the same contacts on every count, which the counter
@@ -101,15 +109,35 @@ CellFigures cell_figures(const World& world, const DetectionSettings& d) {
           static_cast<double>(entries) / static_cast<double>(std::max<std::size_t>(tets, 1))};
 }
 
-void run_cycles(benchmark::State& state, Fixture& f, CollisionSettings settings) {
+// Moves the bodies marked in `moving` along x by 1 mm, forwards in the
+// first 16 of every 32 calls and back in the others (a step of 1 m/s at
+// dt 1 ms), and advances the step index.
+void move_between_cycles(World& world, const std::vector<char>& moving, std::int64_t call) {
+  const double dx_m = (call / 16) % 2 == 0 ? 1e-3 : -1e-3;
+  for (std::size_t b = 0; b < world.bodies.size(); ++b)
+    if (moving[b])
+      for (Vec3& x : world.bodies[b].x_m) x.x() += dx_m;
+  ++world.step_index;
+}
+
+// Cycles on f's world; with `moving` (one flag a body) the world moves
+// between cycles (untimed) and `schedule` decides whether tables are kept.
+void run_cycles(benchmark::State& state, Fixture& f, CollisionSettings settings, CycleSchedule schedule = {},
+                const std::vector<char>& moving = {}) {
   const CellFigures cells = cell_figures(f.world, settings.detection);
   state.counters["bucket_share"] = cells.bucket_share;
   state.counters["cells_per_tet"] = cells.cells_per_tet;
-  CollisionCycle cycle(f.world, std::move(settings));
+  CollisionCycle cycle(f.world, std::move(settings), DetectionMode::SpatialHash, schedule);
   std::size_t colliding = 0, tets = 0;
   for (const Body& b : f.world.bodies) tets += b.mesh->tet_count();
   StageCosts stages;  // summed over the iterations
+  std::int64_t calls = 0;
   for (auto _ : state) {
+    if (!moving.empty()) {
+      state.PauseTiming();
+      move_between_cycles(f.world, moving, calls++);
+      state.ResumeTiming();
+    }
     cycle.begin(f.world);
     cycle.start_step_costs();
     Budget unlimited = Budget::unlimited();
@@ -125,6 +153,9 @@ void run_cycles(benchmark::State& state, Fixture& f, CollisionSettings settings)
     state.counters["ms_" + std::string(cost_stage_name(static_cast<CostStage>(s)))] =
         stages.ms[s] / static_cast<double>(std::max<benchmark::IterationCount>(state.iterations(), 1));
   }
+  state.counters["fresh_hash_share"] =
+      static_cast<double>(cycle.fresh_tet_hashes()) /
+      static_cast<double>(std::max<benchmark::IterationCount>(state.iterations(), 1));
   state.counters["tets"] = static_cast<double>(tets);
   state.counters["colliding"] = static_cast<double>(colliding);
   state.counters["ns_per_tet"] =
@@ -147,6 +178,18 @@ void BM_DogPair(benchmark::State& state) {
 }
 BENCHMARK(BM_DogPair)->ArgsProduct({{0, 1}, {50, 100, 200}, {1}})->Args({0, 100, 2})->Unit(benchmark::kMillisecond);
 
+void BM_DogPairMoving(benchmark::State& state) {
+  if (!std::filesystem::exists(std::filesystem::path(TCBENCH_SHARED_MESHES) / "dog.mesh")) {
+    state.SkipWithError("dog.mesh not found (../shared/data/meshes)");
+    return;
+  }
+  Fixture f = dog_pair();  // its own: the motion must not reach the other benchmarks
+  CollisionSettings settings = resolve_collision_settings(f.world, f.scene.collision, f.scene.world.dt_s);
+  settings.threads = static_cast<int>(state.range(1));
+  run_cycles(state, f, settings, {.keep_table = state.range(0) == 1}, {0, 1});
+}
+BENCHMARK(BM_DogPairMoving)->ArgsProduct({{0, 1}, {1, 2}})->Unit(benchmark::kMillisecond);
+
 void BM_Plates20(benchmark::State& state) {
   static Fixture f = [] {
     Fixture g;
@@ -160,6 +203,17 @@ void BM_Plates20(benchmark::State& state) {
   run_cycles(state, f, settings);
 }
 BENCHMARK(BM_Plates20)->Args({0, 1})->Args({1, 1})->Args({0, 2})->Unit(benchmark::kMillisecond);
+
+void BM_Plates20Moving(benchmark::State& state) {
+  Fixture f;
+  f.scene = load_scene_file(resolve_scene("plates20", default_scene_dirs()));
+  f.world = build_world(f.scene.world);
+  CollisionSettings settings = resolve_collision_settings(f.world, f.scene.collision, f.scene.world.dt_s);
+  std::vector<char> moving(f.world.bodies.size(), 0);
+  for (std::size_t b = 1; b < moving.size(); b += 2) moving[b] = 1;
+  run_cycles(state, f, settings, {.keep_table = state.range(0) == 1}, moving);
+}
+BENCHMARK(BM_Plates20Moving)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
