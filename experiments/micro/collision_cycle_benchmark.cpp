@@ -13,10 +13,10 @@
 // scenes moving between cycles as a step would move them (dog_b, and every
 // other plate, translated along x by 1 mm a cycle, back and forth every 32
 // cycles: 1 m/s at dt 1 ms, a few % of a cell), untimed; keep 0 is the
-// paper's schedule (every cycle hashes afresh), keep 1 our keep_table (the
-// last table refreshed; hashed afresh when the overflow grows past
-// kKeepTableRehashShare of the tets). fresh_hash_share: the cycles that
-// hashed afresh.
+// paper's schedule (every cycle hashes afresh), keep > 0 our keep_table (the
+// last table refreshed; hashed afresh when the overflow grows past keep/1000
+// of the tets; 125 is the default, kKeepTableRehashShare).
+// fresh_hash_share: the cycles that hashed afresh.
 // hash: 0 = mixed (default), 1 = the paper's xor of primes. threads: the
 // cycle's collision.threads (its tet hashing, point queries and border depths
 // in parallel; the same contacts on every count, which the counter
@@ -178,6 +178,12 @@ void BM_DogPair(benchmark::State& state) {
 }
 BENCHMARK(BM_DogPair)->ArgsProduct({{0, 1}, {50, 100, 200}, {1}})->Args({0, 100, 2})->Unit(benchmark::kMillisecond);
 
+// The moving benchmarks' first argument: 0 the paper's schedule, else
+// keep_table with a fresh hash past keep_per_mille/1000 of the tets.
+CycleSchedule keep_schedule(std::int64_t keep_per_mille) {
+  return {.keep_table = keep_per_mille > 0, .keep_table_rehash_share = static_cast<double>(keep_per_mille) / 1000.0};
+}
+
 void BM_DogPairMoving(benchmark::State& state) {
   if (!std::filesystem::exists(std::filesystem::path(TCBENCH_SHARED_MESHES) / "dog.mesh")) {
     state.SkipWithError("dog.mesh not found (../shared/data/meshes)");
@@ -186,9 +192,15 @@ void BM_DogPairMoving(benchmark::State& state) {
   Fixture f = dog_pair();  // its own: the motion must not reach the other benchmarks
   CollisionSettings settings = resolve_collision_settings(f.world, f.scene.collision, f.scene.world.dt_s);
   settings.threads = static_cast<int>(state.range(1));
-  run_cycles(state, f, settings, {.keep_table = state.range(0) == 1}, {0, 1});
+  run_cycles(state, f, settings, keep_schedule(state.range(0)), {0, 1});
 }
-BENCHMARK(BM_DogPairMoving)->ArgsProduct({{0, 1}, {1, 2}})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DogPairMoving)
+    ->ArgsProduct({{0, 125}, {1, 2}})
+    ->Args({31, 1})
+    ->Args({62, 1})
+    ->Args({250, 1})
+    ->Args({500, 1})
+    ->Unit(benchmark::kMillisecond);
 
 void BM_Plates20(benchmark::State& state) {
   static Fixture f = [] {
@@ -211,9 +223,9 @@ void BM_Plates20Moving(benchmark::State& state) {
   CollisionSettings settings = resolve_collision_settings(f.world, f.scene.collision, f.scene.world.dt_s);
   std::vector<char> moving(f.world.bodies.size(), 0);
   for (std::size_t b = 1; b < moving.size(); b += 2) moving[b] = 1;
-  run_cycles(state, f, settings, {.keep_table = state.range(0) == 1}, moving);
+  run_cycles(state, f, settings, keep_schedule(state.range(0)), moving);
 }
-BENCHMARK(BM_Plates20Moving)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Plates20Moving)->Arg(0)->Arg(125)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -110,7 +110,12 @@ void TetHashDetector::begin_hash() {
 void TetHashDetector::enable_refresh() {
   if (!m_hashed_cells.empty()) return;
   m_hashed_cells.assign(6 * m_boxes.size(), 0);
-  m_overflow = SpatialHash(m_hash.cell_size_m(), m_hash.table_size(), m_hash.function());
+  // A quarter of the main table's buckets: twice its load when an eighth of
+  // the tets left their cells (keep_table's limit). A smaller table stays
+  // in cache beside the main one; the buckets' size decides no answer and
+  // no work (a tet whose box holds p was entered in p's cell, so the tets of
+  // other cells sharing its bucket fail the box test uncharged).
+  m_overflow = SpatialHash(m_hash.cell_size_m(), next_prime(m_hash.table_size() / 4 + 2), m_hash.function());
 }
 
 void TetHashDetector::begin_refresh() {

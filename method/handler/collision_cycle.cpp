@@ -19,6 +19,7 @@ CollisionCycle::CollisionCycle(const World& world, CollisionSettings settings, D
       m_widen_stale(schedule.widen_stale),
       m_rehash_stale(schedule.rehash_stale && mode == DetectionMode::SpatialHash),
       m_keep_table(schedule.keep_table && mode == DetectionMode::SpatialHash),
+      m_keep_table_rehash_share(schedule.keep_table_rehash_share),
       m_predict_tasks(schedule.predict_tasks),
       m_pairs(world),
       m_detector(world, m_settings.detection),
@@ -89,7 +90,7 @@ void CollisionCycle::enter_detection(const World& world) {
   m_hash_begin_step = world.step_index;
   m_opening_refresh = m_keep_table && m_table_kept &&
                       static_cast<double>(m_detector.overflow_tets()) <=
-                          kKeepTableRehashShare * static_cast<double>(m_detector.tet_count());
+                          m_keep_table_rehash_share * static_cast<double>(m_detector.tet_count());
   if (m_opening_refresh) {
     // The refresh's tasks, then the queries from the first point (the
     // refresh's completion below).

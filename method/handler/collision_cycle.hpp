@@ -134,6 +134,10 @@ struct TaskGranularity {
   static TaskGranularity fine_tasks() { return {4, 128, 32}; }
 };
 
+/// keep_table: the share of all tets in the last refresh's overflow above
+/// which the next cycle hashes afresh. A judgement, see CycleSchedule.
+inline constexpr double kKeepTableRehashShare = 0.125;
+
 /// How a cycle schedules its work: the paper's by default. Every field is a
 /// setting of ours (method/handler/interruptible_handler.hpp).
 struct CycleSchedule {
@@ -175,6 +179,9 @@ struct CycleSchedule {
   /// overflow: the overflow then costs about what a fresh hash would (each
   /// of its tets is inserted again, and every query searches two tables).
   bool keep_table = false;
+  /// keep_table's share (see above); a field so that benchmarks can weigh
+  /// other values (micro_collision_cycle's BM_DogPairMoving), not a setting.
+  double keep_table_rehash_share = kKeepTableRehashShare;
   /// Predicted stops (setting predict_tasks, ours): under a wall budget the
   /// paper polls after a task and so overruns by the part of the last task
   /// past the limit. With this set, after every task the cycle also stops
@@ -186,10 +193,6 @@ struct CycleSchedule {
   /// also holds the handler's work before the cycle, is not counted).
   bool predict_tasks = false;
 };
-
-/// keep_table: the share of all tets in the last refresh's overflow above
-/// which the next cycle hashes afresh. A judgement, see the setting.
-inline constexpr double kKeepTableRehashShare = 0.125;
 
 class CollisionCycle {
  public:
@@ -287,6 +290,7 @@ class CollisionCycle {
   bool m_widen_stale;
   bool m_rehash_stale;
   bool m_keep_table;
+  double m_keep_table_rehash_share;
   bool m_table_kept = false;       // keep_table: the last tet hash completed, so the next cycle may refresh it
   bool m_opening_refresh = false;  // keep_table: the running refresh stands for the cycle's hash
   bool m_predict_tasks;
