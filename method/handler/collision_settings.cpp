@@ -25,6 +25,13 @@ CollisionSettings resolve_collision_settings(const World& world, const Collision
   s.mean_edge_m = average_edge_length(world);
   s.detection.cell_size_m = desc.cell_size_m.value_or(desc.cell_size_auto_factor * s.mean_edge_m);
   if (!(s.detection.cell_size_m > 0.0)) s.detection.cell_size_m = 1.0;  // a world of points only
+  // "auto*K" with a tiny K (or a tiny world) can make a size whose inverse
+  // overflows, which the hash refuses: bad input, said here with the file.
+  if (!std::isfinite(s.detection.cell_size_m) || !std::isfinite(1.0 / s.detection.cell_size_m))
+    throw InputError(file, 0,
+                     fmt::format("collision.cell_size = {:g} m: its inverse is not a finite number; use a larger cell "
+                                 "size (or \"auto\": the mean edge, {:g} m)",
+                                 s.detection.cell_size_m, s.mean_edge_m));
   // A cell size so small that a tet of the initial world already spans more
   // cells than the hash takes (kMaxCellsPerBox) is bad input, not a run that
   // goes unstable at its first step.

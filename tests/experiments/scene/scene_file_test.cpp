@@ -126,6 +126,7 @@ TEST_CASE("scene file: malformed input names the file, the line and the problem"
       {"object not array", "object = 3\n", {}, "bad.toml", 1, "[[object]]"},
       {"cell size", "[collision]\ncell_size = -1\n" + obj, {}, "bad.toml", 2, "\"auto*K\" or a positive length"},
       {"cell size subnormal", "[collision]\ncell_size = 1e-310\n" + obj, {}, "bad.toml", 2, "its inverse overflows"},
+      {"cell size inf", "[collision]\ncell_size = inf\n" + obj, {}, "bad.toml", 2, "collision.cell_size: must be finite"},
       {"cell size auto*word", "[collision]\ncell_size = \"auto*big\"\n" + obj, {}, "bad.toml", 2, "\"auto*K\" (K > 0"},
       {"cell size auto*0", "[collision]\ncell_size = \"auto*0\"\n" + obj, {}, "bad.toml", 2, "\"auto*K\" (K > 0"},
       {"table size auto*-1", "[collision]\ntable_size = \"auto*-1\"\n" + obj, {}, "bad.toml", 2, "next prime above 2 K tets"},
@@ -233,6 +234,12 @@ TEST_CASE("scene file: collision.response, and implicit response refuses an inte
                     Contains("use integrator = \"euler_cromer\" or collision.response = \"explicit\""));
   const SceneDesc explicit_verlet = parse_scene(verlet, "v.toml", {"collision.response=explicit"});
   CHECK_NOTHROW(resolve_collision_settings(world, explicit_verlet.collision, s.world.dt_s, "v.toml"));
+  // A resolved cell size whose inverse overflows (a subnormal "auto*K"
+  // product) is bad input naming the file, before the hash would refuse it.
+  CollisionDesc subnormal = explicit_verlet.collision;
+  subnormal.cell_size_m = 1e-310;
+  CHECK_THROWS_WITH(resolve_collision_settings(world, subnormal, s.world.dt_s, "v.toml"),
+                    Contains("v.toml") && Contains("its inverse is not a finite number"));
 }
 
 TEST_CASE("the committed scenes load and build", "[scene]") {
