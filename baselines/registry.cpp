@@ -53,8 +53,8 @@ const SettingSpec kKeepTable{.name = "keep_table",
                              .default_value = false,
                              .description = "keep the tet hash from one cycle to the next and refresh it (every moving "
                                             "tet's box, the tets that left their cells entered into a second table) "
-                                            "instead of hashing every tet afresh; the same contacts, less hashing "
-                                            "work (ours, not the paper's)"};
+                                            "instead of hashing every tet afresh; the same contacts in a cycle "
+                                            "within one step, less hashing work (ours, not the paper's)"};
 
 const SettingSpec kPredictTasks{.name = "predict_tasks",
                                 .type = SettingSpec::Type::Boolean,
@@ -130,7 +130,8 @@ const std::vector<MethodInfo>& method_registry() {
            },
        .uses_budget = true},
       {.name = "full",
-       .description = "the whole collision cycle every step, never interrupted (the paper's reference)",
+       .description = "the whole collision cycle every step, never interrupted (with default settings the paper's "
+                      "reference)",
        .settings = {kKeepTable},
        .make =
            [](const MethodSettings& s) {

@@ -26,7 +26,8 @@ Json viewer_screenshot_runs(const std::filesystem::path& sweep_dir) {
     if (run.is_discarded() || !run.is_object() || run.value("scene", "") != "plates20" || run["replay"].is_null() ||
         run.value("response", "") != "implicit" || run.value("seed", 1) != 0 || run.value("status", "") != "ok")
       continue;
-    const std::string method = run.value("method", "");
+    // The label: "full" only with every setting at its default (not keep_table).
+    const std::string method = run.value("method_label", run.value("method", ""));
     const std::string budget = run["budget"].value("label", "");
     if (method == "full" && budget == "none") full = entry.path();
     if (method == "interruptible" && budget == "full-work/3") interruptible = entry.path();

@@ -33,7 +33,8 @@ def setup(run):
 
 
 def is_reference(run):
-    return run.method == REFERENCE_METHOD and run.budget_kind == "none"
+    """full with every setting at its default (method_label "full": keep_table is ours) and no budget."""
+    return run.method_label == REFERENCE_METHOD and run.budget_kind == "none"
 
 
 def closest(run, candidates):

@@ -66,6 +66,13 @@ class Repeats(unittest.TestCase):
                     divergence={"compared_steps": 8})
         self.assertTrue(pairing.is_noise_floor(floor))
 
+    def test_full_with_a_setting_of_ours_is_not_the_reference(self):
+        kept = run("kept", "full", budget="none")
+        kept.record["method_label"] = "full(keep_table=true)"
+        self.assertFalse(pairing.is_reference(kept))
+        kept.record["method_label"] = "full"  # every setting at its default
+        self.assertTrue(pairing.is_reference(kept))
+
 
 class LatencyBars(unittest.TestCase):
     def test_one_bar_per_configuration_with_median_interval_and_tunnelling_count(self):

@@ -148,7 +148,7 @@ def y_scale(values):
 
 
 def point_label(run, p):
-    return "0 (full)" if p["p50"] == 0 and run.method == pairing.REFERENCE_METHOD else f"{p['p50']:.3g}"
+    return "0 (full)" if p["p50"] == 0 and run.method_label == pairing.REFERENCE_METHOD else f"{p['p50']:.3g}"
 
 
 def draw_points(ax, members, colours, markers):
