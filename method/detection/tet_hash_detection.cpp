@@ -110,12 +110,12 @@ void TetHashDetector::begin_hash() {
 void TetHashDetector::enable_refresh() {
   if (!m_hashed_cells.empty()) return;
   m_hashed_cells.assign(6 * m_boxes.size(), 0);
-  // A quarter of the main table's buckets: twice its load when an eighth of
-  // the tets left their cells (keep_table's limit). A smaller table stays
-  // in cache beside the main one; the buckets' size decides no answer and
-  // no work (a tet whose box holds p was entered in p's cell, so the tets of
-  // other cells sharing its bucket fail the box test uncharged).
-  m_overflow = SpatialHash(m_hash.cell_size_m(), next_prime(m_hash.table_size() / 4 + 2), m_hash.function());
+  // The main table's size. A smaller overflow decides the same answers, but
+  // not always the same work: a widened query (margin > 0) searches several
+  // buckets and keeps one best-so-far across them, so a tet of a far cell
+  // sharing a bucket searched early can be charged before the early stop
+  // would have passed it by.
+  m_overflow = SpatialHash(m_hash.cell_size_m(), m_hash.table_size(), m_hash.function());
 }
 
 void TetHashDetector::begin_refresh() {
@@ -173,6 +173,7 @@ std::uint64_t TetHashDetector::refresh_some_tets(const World& world, const Colli
 }
 
 std::uint64_t TetHashDetector::refresh_tets(const World& world, const CollisionPairs& pairs, WorkerPool* pool) {
+  begin_refresh();  // from the first tet, whatever a refresh before left
   // walk_tets()'s choice of tets, by global id: ids run body by body, tet by
   // tet, so ascending ids are the walk's order.
   m_left_cells.assign(m_boxes.size(), 0);

@@ -9,8 +9,9 @@
 ///      whenever positions do not change in between. Tets hashed in an earlier
 ///      step keep that step's AABB, as the whole hash does in the paper's
 ///      schedule once the cycle spans steps;
-///   1b. (setting rehash_stale, ours) refresh: once the table is older than
-///      the positions, begin_refresh() and refresh_some_tets() revisit every
+///   1b. (settings rehash_stale and keep_table, ours) refresh: once the
+///      table is older than the positions, begin_refresh() and
+///      refresh_some_tets() (or refresh_tets(), all at once) revisit every
 ///      tet of a body that can move, store its current AABB, and enter into a
 ///      second table (the overflow) each tet whose current AABB
 ///      reaches a cell outside the cells it was hashed in (the overflow has
@@ -80,7 +81,7 @@ class TetHashDetector {
   void begin_refresh();
   std::uint64_t refresh_some_tets(const World& world, const CollisionPairs& pairs, std::size_t max_tets, bool& done);
   SpatialHash& mutable_overflow() { return m_overflow; }
-  /// The whole refresh at once (after begin_refresh()), its tets' boxes and
+  /// The whole refresh at once (it calls begin_refresh() first), its tets' boxes and
   /// cell checks on the pool's threads (or the caller's without one), the
   /// overflow's inserts in the serial walk's order: the same boxes, overflow
   /// and work as refresh_some_tets() to the end, on any thread count. Then

@@ -256,6 +256,28 @@ CostStage cost_stage(CollisionCycle::Stage stage) {
 
 }  // namespace
 
+void CollisionCycle::end_refresh(const World& world) {
+  // The motion since the refresh began is what its boxes may miss.
+  m_tet_motion_m -= m_motion_at_refresh_m;
+  m_tet_margin_m = std::min(m_tet_motion_m, 0.5 * m_settings.detection.cell_size_m);
+  if (m_opening_refresh) {
+    // keep_table: the refresh stands for the cycle's hash and is dated as
+    // the hash would be: by its one task's step, or under fine tasks by the
+    // step the cycle's detection began in (a later rehash_stale refresh then
+    // covers what moved since; no query task need run between the two).
+    m_opening_refresh = false;
+    m_fresh_step = m_granularity.fine() ? m_hash_begin_step : world.step_index;
+    enter(Stage::QueryPoints, world);
+    return;
+  }
+  // A refresh that spanned steps holds its first tets' older positions; it
+  // is not restarted (that could never end): the table counts as this step's.
+  m_fresh_step = world.step_index;
+  m_stage = m_resume_stage;
+  m_cursor = m_resume_cursor;
+  m_refresh_wait = true;  // the resumed stage runs a task before the next refresh
+}
+
 bool CollisionCycle::advance(World& world, Budget& budget) {
   grow_margins(world);
   if (m_stage == Stage::Done || m_stage == Stage::Idle) return m_stage == Stage::Done;
@@ -318,33 +340,19 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
         if (refreshed) {
           m_detector.mutable_overflow().begin_build();
           m_stage = Stage::BuildOverflow;
+          // keep_table at the paper's granularity: the refresh stands for
+          // HashTets, one task with its table's build.
+          if (m_opening_refresh && !m_granularity.fine()) {
+            m_detector.mutable_overflow().build();
+            end_refresh(world);
+          }
         }
         break;
       }
       case Stage::BuildOverflow: {
         const std::size_t per_task =
             m_granularity.fine() ? m_granularity.build_visits_per_task : std::numeric_limits<std::size_t>::max();
-        if (m_detector.mutable_overflow().build_some(per_task)) {
-          // The motion since the refresh began is what its boxes may miss.
-          m_tet_motion_m -= m_motion_at_refresh_m;
-          m_tet_margin_m = std::min(m_tet_motion_m, 0.5 * m_settings.detection.cell_size_m);
-          if (m_opening_refresh) {
-            // keep_table: the refresh stands for the cycle's hash, and is
-            // dated as a fine hash is, by the step it began in (a later
-            // rehash_stale refresh then covers what moved since).
-            m_opening_refresh = false;
-            m_fresh_step = m_hash_begin_step;
-            enter(Stage::QueryPoints, world);
-            break;
-          }
-          // A refresh that spanned steps holds its first tets' older
-          // positions; it is not restarted (that could never end): the
-          // table counts as this step's.
-          m_fresh_step = world.step_index;
-          m_stage = m_resume_stage;
-          m_cursor = m_resume_cursor;
-          m_refresh_wait = true;  // the resumed stage runs a task before the next refresh
-        }
+        if (m_detector.mutable_overflow().build_some(per_task)) end_refresh(world);
         break;
       }
       case Stage::QueryPoints:

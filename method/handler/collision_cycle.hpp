@@ -42,8 +42,13 @@
 ///                it stopped. Reported under hash_tets.
 ///   BuildOverflow the overflow table built, as BuildTetHash
 ///   (setting keep_table, ours) a cycle whose last table is kept opens with
-///                RefreshTets and BuildOverflow in place of HashTets (and
-///                BuildTetHash); then QueryPoints from its first point
+///                RefreshTets in place of HashTets: at the paper's granularity
+///                one task with the overflow's build, as HashTets; with fine
+///                tasks RefreshTets and BuildOverflow pieces, in place of
+///                HashTets and BuildTetHash. Then QueryPoints from its first
+///                point. This refresh may be followed at once by a
+///                rehash_stale refresh (without a query task between) when it
+///                spanned steps, as a fine hash may
 /// A task always reads the world's current positions: work resumed in a later
 /// step uses the positions of that step. In particular a point detected in an
 /// earlier step is re-detected (one point query) before its border-edge work:
@@ -74,7 +79,9 @@
 /// a thread, at most 64 a thread). The paper's
 /// HashTets task (not fine tasks, whose pieces stay serial) also runs on the
 /// pool (TetHashDetector::hash_tets with a pool): the same table, boxes and
-/// work units. The paper's BorderDepth tasks (not fine tasks) are batched the
+/// work units; so does a RefreshTets task at that granularity
+/// (TetHashDetector::refresh_tets: the boxes checked on the pool, the
+/// overflow filled in id order: the same overflow and work units). The paper's BorderDepth tasks (not fine tasks) are batched the
 /// same way when every contact from the cursor on was detected at the
 /// current step's positions, so that no task ahead re-detects a point (a
 /// re-detection changes what later depths read): each depth is computed on a
@@ -171,13 +178,19 @@ struct CycleSchedule {
   /// hashed in entered into the overflow table), as a tree library refits
   /// its tree instead of rebuilding it. Queries then find exactly what a
   /// fresh hash finds (tet_hash_detection.hpp, 1b), so a cycle that runs
-  /// within one step has the paper's contacts, depths and forces; only its
-  /// hash_tets work and time differ (a unit a movable tet and one an overflow
-  /// cell, against one a cell of every tet). The table is hashed afresh in
-  /// the first cycle, after a hash that did not complete, and whenever the
-  /// last refresh put more than kKeepTableRehashShare of all tets into the
-  /// overflow: the overflow then costs about what a fresh hash would (each
-  /// of its tets is inserted again, and every query searches two tables).
+  /// within one step has the paper's contacts, depths and forces. Its work
+  /// and time differ: hash_tets charges a unit a movable tet and one an
+  /// overflow cell, against one a cell of every tet; while the overflow
+  /// holds tets, every query charges a unit more for its cell there, and
+  /// candidates met in a different order can change what the early stop
+  /// saves. So under a budget the cycle stops elsewhere than the paper's. The
+  /// table is hashed afresh in the first cycle, after a hash that did not
+  /// complete, and whenever the last refresh put more than
+  /// keep_table_rehash_share of all tets into the overflow (each of its tets
+  /// is inserted again every cycle, and queries search two tables). The
+  /// default 1/8 is a judgement: on the moving dog pair
+  /// (micro_collision_cycle BM_DogPairMoving) shares from 1/32 to 1/4 gave
+  /// cycles within the machine's noise of each other, 1/2 a slower one.
   bool keep_table = false;
   /// keep_table's share (see above); a field so that benchmarks can weigh
   /// other values (micro_collision_cycle's BM_DogPairMoving), not a setting.
@@ -267,6 +280,8 @@ class CollisionCycle {
   void grow_margins(const World& world);
   void warm_up(const World& world);
   bool needs_refresh(const World& world) const;
+  /// A refresh's overflow is built: the table counts as fresh (see RefreshTets).
+  void end_refresh(const World& world);
   void restore_index_order();
   void start_layer_scan();
   bool scan_layer_some(const World& world, std::size_t max_contacts);

@@ -79,8 +79,8 @@ class CollisionHandler {
   /// method does not count it.
   virtual std::optional<std::size_t> memory_bytes() const { return std::nullopt; }
   /// For methods that run the collision cycle: cycles begun, and how many
-  /// of their tet tables were hashed afresh (all but the refreshed ones of
-  /// the setting keep_table); nullopt for the others.
+  /// fresh tet hashes completed (none for brute force; under keep_table the
+  /// other cycles refreshed the last table); nullopt for the others.
   struct CycleCounts {
     std::int64_t begun = 0;
     std::int64_t tet_hashes_fresh = 0;

@@ -26,7 +26,9 @@ namespace {
 
 using Points = std::set<std::tuple<int, int, int, int>>;  // (object, vertex, other, tet)
 
-Points query_all(const World& world, const CollisionPairs& pairs, TetHashDetector* detector) {
+// Every vertex queried; `total_work`, if given, gets the queries' work.
+Points query_all(const World& world, const CollisionPairs& pairs, TetHashDetector* detector,
+                 std::uint64_t* total_work = nullptr) {
   Points out;
   for (std::int32_t b = 0; b < static_cast<std::int32_t>(world.bodies.size()); ++b)
     for (std::int32_t v = 0; v < static_cast<std::int32_t>(world.bodies[b].x_m.size()); ++v) {
@@ -34,6 +36,7 @@ Points query_all(const World& world, const CollisionPairs& pairs, TetHashDetecto
       const auto hit = detector ? detector->query_point(world, pairs, b, v, work)
                                 : brute_force_query_point(world, pairs, b, v, work);
       if (hit) out.insert({hit->object, hit->vertex, hit->other, hit->tet});
+      if (total_work) *total_work += work;
     }
   return out;
 }
@@ -112,23 +115,30 @@ TEST_CASE("the whole refresh at once, on 1 or 2 threads, is the piecewise refres
       World world = build_world(scene);
       const CollisionSettings settings = test::settings_of(world, scene);
       const CollisionPairs pairs(world);
-      TetHashDetector piecewise(world, settings.detection), whole(world, settings.detection);
-      piecewise.enable_refresh();
-      whole.enable_refresh();
-      piecewise.hash_tets(world, pairs);
-      whole.hash_tets(world, pairs);
+      const World at_hash = build_world(scene);  // the positions the detectors hash
       move_bodies(world, settings.detection.cell_size_m, 0.2, jitter);
+      // Each detector hashed at the old positions, then refreshed at the new.
+      const auto hashed = [&] {
+        TetHashDetector d(at_hash, settings.detection);
+        d.enable_refresh();
+        d.hash_tets(at_hash, pairs);
+        return d;
+      };
+      TetHashDetector piecewise = hashed();
       const std::uint64_t piecewise_work = refresh(world, pairs, piecewise, 5);
-      const Points answers = query_all(world, pairs, &piecewise);
+      std::uint64_t piecewise_query_work = 0;  // decided by the stored boxes too
+      const Points answers = query_all(world, pairs, &piecewise, &piecewise_query_work);
       CHECK(answers == query_all(world, pairs, nullptr));
       for (const int threads : {1, 2}) {
         INFO("threads " << threads);
         WorkerPool pool(threads);
-        whole.begin_refresh();
+        TetHashDetector whole = hashed();
         CHECK(whole.refresh_tets(world, pairs, &pool) == piecewise_work);
         whole.mutable_overflow().build();
         CHECK(whole.overflow_tets() == piecewise.overflow_tets());
-        CHECK(query_all(world, pairs, &whole) == answers);
+        std::uint64_t query_work = 0;
+        CHECK(query_all(world, pairs, &whole, &query_work) == answers);
+        CHECK(query_work == piecewise_query_work);
       }
       if (jitter > 0.0) CHECK(piecewise.overflow_tets() > 0);
     }

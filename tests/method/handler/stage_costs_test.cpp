@@ -5,6 +5,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+
 #include "baselines/registry.hpp"
 #include "method/handler/cycle_handler.hpp"
 #include "tests/method/test_worlds.hpp"
@@ -19,7 +21,9 @@ int reported(CollisionCycle::Stage s) {
   switch (s) {
     case S::Prioritize: return static_cast<int>(CostStage::Prioritize);
     case S::HashTets:
-    case S::BuildTetHash: return static_cast<int>(CostStage::HashTets);
+    case S::BuildTetHash:
+    case S::RefreshTets:
+    case S::BuildOverflow: return static_cast<int>(CostStage::HashTets);
     case S::QueryPoints: return static_cast<int>(CostStage::QueryPoints);
     case S::HashSurface:
     case S::BuildSurfaceHash: return static_cast<int>(CostStage::HashSurface);
@@ -36,10 +40,15 @@ int reported(CollisionCycle::Stage s) {
 TEST_CASE("stage work adds up to the step's work exactly, for every cycle method", "[stages]") {
   for (const auto& [scene_name, scene] : test::collision_scenes()) {
     for (const MethodInfo& info : method_registry()) {
+     for (const bool keep : {false, true}) {
+      const bool has_keep = std::any_of(info.settings.begin(), info.settings.end(),
+                                        [](const SettingSpec& spec) { return spec.name == "keep_table"; });
+      if (keep && !has_keep) continue;
       MethodSettings settings(info.settings);
+      if (keep) settings.set("keep_table", true);
       auto handler = info.make(settings);
       if (!dynamic_cast<CycleHandler*>(handler.get())) continue;
-      INFO(scene_name << ", " << info.name);
+      INFO(scene_name << ", " << info.name << (keep ? " + keep_table" : ""));
       World world = build_world(scene.world);
       handler->init(world, test::settings_of(world, scene));
       for (int s = 0; s < 12; ++s) {
@@ -50,6 +59,7 @@ TEST_CASE("stage work adds up to the step's work exactly, for every cycle method
         for (double ms : r.stages.ms) CHECK(ms >= -1e-12);
         world.step(scene.world.dt_s);
       }
+     }
     }
   }
 }
@@ -61,11 +71,12 @@ TEST_CASE("on a clock that reads the work charged so far, each stage's time is i
   // attributed to the wrong stage, or a missed close, breaks the equality.
   for (const auto& [scene_name, scene] : test::collision_scenes()) {
     for (const char* method : {"interruptible", "interruptible_prioritized", "interruptible_tracked"}) {
-      for (const bool fine : {false, true}) {
-        INFO(scene_name << ", " << method << (fine ? " + fine_tasks" : ""));
+      for (const auto& [fine, keep] : {std::pair{false, false}, {true, false}, {false, true}, {true, true}}) {
+        INFO(scene_name << ", " << method << (fine ? " + fine_tasks" : "") << (keep ? " + keep_table" : ""));
         const MethodInfo& info = find_method(method);
         MethodSettings settings(info.settings);
         if (fine) settings.set("fine_tasks", true);
+        if (keep) settings.set("keep_table", true);
         auto handler = info.make(settings);
         auto* cycle_handler = dynamic_cast<CycleHandler*>(handler.get());
         REQUIRE(cycle_handler);
