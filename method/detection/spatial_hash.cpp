@@ -110,6 +110,9 @@ void SpatialHash::begin_build() {
 }
 
 bool SpatialHash::build_some(std::size_t max_visits) {
+  // insert_all_and_build() built this epoch's table already (m_entries is
+  // empty): sorting nothing would only drop its sorted items.
+  if (m_built_in_parts) return true;
   // Counting sort by bucket over the entries only: a bucket's start is given
   // when its first entry is met (a bucket's start doubles as the fill cursor, so each
   // start is stored as the end of its range and rewound afterwards). Three

@@ -115,7 +115,8 @@ class SpatialHash {
   /// build_some() until it returns true. Each call visits at most
   /// `max_visits` entries (the sort makes three passes over them); the
   /// result is exactly build()'s. Nothing may be inserted or queried until
-  /// it is done.
+  /// it is done. After insert_all_and_build() the table is built: build()
+  /// and build_some() then do nothing (build_some() returns true).
   void begin_build();
   bool build_some(std::size_t max_visits);
 

@@ -190,23 +190,26 @@ std::uint64_t TetHashDetector::refresh_tets(const World& world, const CollisionP
     }
     return visited;
   };
+  std::optional<WorkerPool> caller;  // made only when needed: a pool is not free to build
+  WorkerPool& threads = pool ? *pool : caller.emplace(1);
+  std::vector<std::uint64_t> visited(static_cast<std::size_t>(threads.threads()), 0);
+  threads.for_ranges(m_boxes.size(), [&](int part, std::size_t begin, std::size_t end) {
+    visited[static_cast<std::size_t>(part)] = check(begin, end);
+  });
   std::uint64_t work = 0;
-  if (pool && pool->threads() > 1) {
-    std::vector<std::uint64_t> visited(static_cast<std::size_t>(pool->threads()), 0);
-    pool->for_ranges(m_boxes.size(), [&](int part, std::size_t begin, std::size_t end) {
-      visited[static_cast<std::size_t>(part)] = check(begin, end);
-    });
-    for (const std::uint64_t v : visited) work += work::kTetBox * v;
-  } else {
-    work = work::kTetBox * check(0, m_boxes.size());
-  }
-  // The overflow's inserts on this thread, in id order: its buckets list
-  // their tets by ascending id, as queries need.
-  for (std::size_t id = 0; id < m_boxes.size(); ++id) {
-    if (!m_left_cells[id]) continue;
-    ++m_overflow_tets;
-    work += work::kCellInsert * m_overflow.insert_box(m_boxes[id].lo, m_boxes[id].hi, static_cast<std::uint32_t>(id));
-  }
+  for (const std::uint64_t v : visited) work += work::kTetBox * v;
+  // The tets that left their cells into the overflow, in id order, built at
+  // once as hash_tets() builds the main table (its buckets list their tets
+  // by ascending id, as queries need); a later build is then a no-op.
+  m_overflow_tets = static_cast<std::size_t>(std::count(m_left_cells.begin(), m_left_cells.end(), 1));
+  const auto box_of = [&](std::size_t id, Vec3& lo, Vec3& hi, std::uint32_t& item) {
+    if (!m_left_cells[id]) return false;
+    item = static_cast<std::uint32_t>(id);
+    lo = m_boxes[id].lo;
+    hi = m_boxes[id].hi;
+    return true;
+  };
+  work += work::kCellInsert * m_overflow.insert_all_and_build(m_boxes.size(), box_of, threads);
   m_hash_body = world.bodies.size();
   m_overflow_active = m_overflow_tets > 0;
   return work;

@@ -82,10 +82,11 @@ class TetHashDetector {
   std::uint64_t refresh_some_tets(const World& world, const CollisionPairs& pairs, std::size_t max_tets, bool& done);
   SpatialHash& mutable_overflow() { return m_overflow; }
   /// The whole refresh at once (it calls begin_refresh() first), its tets' boxes and
-  /// cell checks on the pool's threads (or the caller's without one), the
-  /// overflow's inserts in the serial walk's order: the same boxes, overflow
-  /// and work as refresh_some_tets() to the end, on any thread count. Then
-  /// build the overflow.
+  /// cell checks on the pool's threads (or the caller's without one), then
+  /// the overflow inserted and built as hash_tets() builds the main table
+  /// (SpatialHash::insert_all_and_build(): buckets in id order): the same
+  /// boxes, overflow and work as refresh_some_tets() to the end and a build,
+  /// on any thread count. A build of the overflow afterwards does nothing.
   std::uint64_t refresh_tets(const World& world, const CollisionPairs& pairs, WorkerPool* pool = nullptr);
   /// Tets in the overflow of the last refresh (0 without one).
   std::size_t overflow_tets() const { return m_overflow_tets; }

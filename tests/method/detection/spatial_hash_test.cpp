@@ -277,6 +277,12 @@ TEST_CASE("spatial hash: the parallel insert and build make the serial table", "
         INFO("threads " << threads << ", buckets per owner " << per_owner << ", epoch " << epoch);
         CHECK(cells == serial_cells);
         require_same_table(serial, parallel, boxes);
+        // The table is built: a build afterwards (a caller's BuildOverflow
+        // task) does nothing, and must not drop the sorted items.
+        parallel.begin_build();
+        CHECK(parallel.build_some(1));
+        parallel.build();
+        require_same_table(serial, parallel, boxes);
       }
     }
   }
