@@ -102,8 +102,10 @@ void CollisionCycle::enter_detection(const World& world) {
     return;
   }
   enter(m_mode == DetectionMode::SpatialHash ? Stage::HashTets : Stage::QueryPoints, world);
-  if (m_stage == Stage::HashTets) m_table_kept = false;  // until this hash completes
-  if (m_stage == Stage::HashTets && m_granularity.fine()) m_detector.begin_hash();
+  if (m_stage == Stage::HashTets) {
+    m_table_kept = false;  // until this hash completes
+    if (m_granularity.fine()) m_detector.begin_hash();
+  }
 }
 
 bool CollisionCycle::needs_refresh(const World& world) const {
