@@ -182,17 +182,24 @@ class SpatialHash {
 
   double cell_size_m() const { return m_cell_size; }
   HashFunction function() const { return m_function; }
+  /// x in cell units, clamped: cell_of(x) is its floor. So for an integer
+  /// c with |c| <= 2^50 (every cell index), cell_of(x) >= c exactly when
+  /// grid_coordinate(x) >= c, and cell_of(x) <= c exactly when
+  /// grid_coordinate(x) < c + 1: comparisons that need no floor.
+  double grid_coordinate(double x) const {
+    constexpr double kLimit = 1125899906842624.0;  // 2^50
+    return std::clamp(x * m_inverse_cell, -kLimit, kLimit);
+  }
   /// The grid index of coordinate x along any axis: floor(x * (1 / cell size)),
   /// clamped (the inverse is taken once; at a cell border it may differ from
   /// floor(x / cell size) by one, the same for every caller).
   std::int64_t cell_of(double x) const {
-    constexpr double kLimit = 1125899906842624.0;  // 2^50
     // floor by truncation and a step down for negative non-integers:
     // exactly std::floor for every clamped value (its integer part is a
     // double, so the truncation is exact), and clamping first gives the same
     // as after, the limits being integers. std::floor on the baseline x86-64 target (no SSE4.1
     // round) is a dozen instructions, six times a box.
-    const double y = std::clamp(x * m_inverse_cell, -kLimit, kLimit);
+    const double y = grid_coordinate(x);
     const auto t = static_cast<std::int64_t>(y);
     return t - static_cast<std::int64_t>(static_cast<double>(t) > y);  // no branch: signs mix near the origin
   }

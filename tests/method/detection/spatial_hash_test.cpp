@@ -118,7 +118,7 @@ TEST_CASE("spatial hash: every item is found in every cell it was inserted into"
   }
 }
 
-TEST_CASE("spatial hash: cell_of is floor(x * (1 / cell size)), clamped to +-2^50", "[hash]") {
+TEST_CASE("spatial hash: cell_of is floor(x * (1 / cell size)), clamped to +-2^50; grid_coordinate compares as it", "[hash]") {
   // cell_of floors by truncation and a step down for negative non-integers; the reference
   // is std::floor, then the clamp, for edge values and a million random ones
   // of every magnitude and sign.
@@ -141,6 +141,17 @@ TEST_CASE("spatial hash: cell_of is floor(x * (1 / cell size)), clamped to +-2^5
     for (const double x : xs) {
       INFO("cell " << cell << ", x " << x);
       REQUIRE(hash.cell_of(x) == reference(x));
+      // The refresh's floor-free test (tet_hash_detection.hpp): against any
+      // cell index c, including the clamp's, comparing grid_coordinate()
+      // decides what comparing cell_of() does.
+      const std::int64_t own = hash.cell_of(x);
+      const std::int64_t limit = static_cast<std::int64_t>(kLimit);
+      for (const std::int64_t c : {own - 1, own, own + 1, limit, -limit}) {
+        if (c > limit || c < -limit) continue;
+        const double g = hash.grid_coordinate(x), cd = static_cast<double>(c);
+        REQUIRE((own >= c) == (g >= cd));
+        REQUIRE((own <= c) == (g < cd + 1.0));
+      }
     }
   }
 }

@@ -9,6 +9,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <optional>
@@ -142,6 +143,68 @@ TEST_CASE("the whole refresh at once, on 1 or 2 threads, is the piecewise refres
       }
       if (jitter > 0.0) CHECK(piecewise.overflow_tets() > 0);
     }
+}
+
+TEST_CASE("a tet whose box reaches the next cell's border has left its cells; one at its own cell's border has not",
+          "[detection][rehash]") {
+  // Cell borders decide the refresh exactly: cell_of(x) = floor(x / cell),
+  // so a box's top exactly on the border above its top cell is in the next
+  // cell, and its bottom exactly on its bottom cell's lower border is still
+  // in that cell. A power-of-two cell makes the grid coordinates exact, so
+  // the moved vertices sit exactly on the borders. Both refresh paths.
+  const test::TestScene scene = test::collision_scenes()[3].second;  // a passive floor and a cube
+  World world = build_world(scene);
+  CollisionSettings settings = test::settings_of(world, scene);
+  settings.detection.cell_size_m = std::exp2(std::round(std::log2(settings.detection.cell_size_m)));
+  const double cell = settings.detection.cell_size_m;
+  const CollisionPairs pairs(world);
+  // The cube off the grid's borders (it starts on one): both moves below
+  // then change the positions.
+  const auto start = [&] {
+    World w = build_world(scene);
+    for (Vec3& v : w.bodies[1].x_m) v.x() += 0.3 * cell;
+    return w;
+  };
+  world = start();
+  std::vector<Vec3>& x = world.bodies[1].x_m;
+  double min_x = x[0].x(), max_x = x[0].x();
+  for (const Vec3& v : x) {
+    min_x = std::min(min_x, v.x());
+    max_x = std::max(max_x, v.x());
+  }
+  const TetMesh& mesh = *world.bodies[1].mesh;
+  const auto tets_with_vertex_at = [&](double at) {
+    std::size_t n = 0;
+    for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+      bool has = false;
+      for (const std::int32_t v : mesh.tets[t]) has = has || x[static_cast<std::size_t>(v)].x() == at;
+      n += !mesh.is_degenerate[t] && has;
+    }
+    return n;
+  };
+  const std::size_t top_tets = tets_with_vertex_at(max_x);
+  REQUIRE(top_tets > 0);
+  for (const bool top : {true, false}) {
+    for (const bool at_once : {false, true}) {
+      INFO((top ? "top to the next border" : "bottom to its own border") << (at_once ? ", at once" : ", in pieces"));
+      World moved = start();
+      TetHashDetector detector(moved, settings.detection);
+      detector.enable_refresh();
+      detector.hash_tets(moved, pairs);
+      // The top vertices to the border above their cell (into the next
+      // cell), or the bottom ones down to the border below theirs (the
+      // same cell); no other vertex moves.
+      const double from = top ? max_x : min_x;
+      const double to = top ? (std::floor(max_x / cell) + 1.0) * cell : std::floor(min_x / cell) * cell;
+      REQUIRE(to != from);
+      for (Vec3& v : moved.bodies[1].x_m)
+        if (v.x() == from) v.x() = to;
+      if (at_once) detector.refresh_tets(moved, pairs, nullptr);
+      else refresh(moved, pairs, detector, 5);
+      CHECK(detector.overflow_tets() == (top ? top_tets : 0));
+      CHECK(query_all(moved, pairs, &detector) == query_all(moved, pairs, nullptr));
+    }
+  }
 }
 
 TEST_CASE("a new hash drops the overflow; fixed passive bodies are never revisited", "[detection][rehash]") {
