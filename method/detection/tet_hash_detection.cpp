@@ -31,6 +31,13 @@ void tet_box(const Body& body, const Tet& tet, Vec3& lo, Vec3& hi) {
 // never moves, so refreshing its tets would find nothing.
 bool can_move(const Body& body) { return !body.passive || body.trajectory || body.latent; }
 
+// Whether the tet walks (serial, parallel, refresh) visit body b's tets: a
+// body with a collision partner and, for a refresh, one that can move. One
+// rule for every path, so their tables, overflows and work cannot drift.
+bool walked(const World& world, const CollisionPairs& pairs, std::size_t b, bool movable_only) {
+  return pairs.has_partner(b) && (!movable_only || can_move(world.bodies[b]));
+}
+
 Contact make_contact(const World& world, std::int32_t object, std::int32_t vertex, std::int32_t other,
                      std::int32_t tet) {
   const auto& x = world.bodies[other].x_m;
@@ -93,7 +100,7 @@ std::uint64_t TetHashDetector::hash_tets(const World& world, const CollisionPair
     const std::int32_t b = m_owner[id];
     const Body& body = world.bodies[static_cast<std::size_t>(b)];
     const std::size_t t = id - m_body_tet_offset[static_cast<std::size_t>(b)];
-    if (!pairs.has_partner(static_cast<std::size_t>(b)) || body.mesh->is_degenerate[t]) return false;
+    if (!walked(world, pairs, static_cast<std::size_t>(b), false) || body.mesh->is_degenerate[t]) return false;
     item = static_cast<std::uint32_t>(id);
     store_box(body, t, item);
     record_hashed_cells(item);
@@ -140,7 +147,7 @@ std::uint64_t TetHashDetector::walk_tets(const World& world, const CollisionPair
   std::size_t visited = 0;
   for (; m_hash_body < world.bodies.size(); ++m_hash_body, m_hash_tet = 0) {
     const Body& body = world.bodies[m_hash_body];
-    if (!pairs.has_partner(m_hash_body) || (movable_only && !can_move(body))) continue;
+    if (!walked(world, pairs, m_hash_body, movable_only)) continue;
     const std::vector<char>& degenerate = body.mesh->is_degenerate;
     for (; m_hash_tet < body.mesh->tet_count(); ++m_hash_tet) {
       if (visited == max_tets) {
@@ -194,7 +201,7 @@ std::uint64_t TetHashDetector::refresh_tets(const World& world, const CollisionP
       const std::size_t b = static_cast<std::size_t>(m_owner[id]);
       const Body& body = world.bodies[b];
       const std::size_t t = id - m_body_tet_offset[b];
-      if (!pairs.has_partner(b) || !can_move(body) || body.mesh->is_degenerate[t]) continue;
+      if (!walked(world, pairs, b, true) || body.mesh->is_degenerate[t]) continue;
       store_box(body, t, static_cast<std::uint32_t>(id));
       m_left_cells[id] = !within_hashed_cells(static_cast<std::uint32_t>(id));
       ++visited;
