@@ -17,8 +17,8 @@ void tet_box(const Body& body, const Tet& tet, Vec3& lo, Vec3& hi) {
   // In locals, stored once: through the references the compiler must assume
   // lo and hi may alias the positions, and stored and reloaded both after
   // every vertex (perf: 15 % of micro_peer_inside's BM_OursKeptTable). The
-  // order of the minima may give a zero the other sign; nothing compares a
-  // zero's sign (cells, box tests and contacts are the same).
+  // same box, bit for bit: cwiseMin/Max keep the first of equal values, so
+  // either order picks the earliest vertex holding the extreme.
   const Vec3* x = body.x_m.data();
   const Vec3 &a = x[tet[0]], &b = x[tet[1]], &c = x[tet[2]], &d = x[tet[3]];
   const Vec3 box_lo = a.cwiseMin(b).cwiseMin(c.cwiseMin(d));

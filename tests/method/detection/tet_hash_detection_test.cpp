@@ -145,7 +145,7 @@ TEST_CASE("the whole refresh at once, on 1 or 2 threads, is the piecewise refres
     }
 }
 
-TEST_CASE("a tet whose box reaches the next cell's border has left its cells; one at its own cell's border has not",
+TEST_CASE("a tet whose box reaches the next cell's border has left its cells; one at its own cell's border has not; one past it has",
           "[detection][rehash]") {
   // Cell borders decide the refresh exactly: cell_of(x) = floor(x / cell),
   // so a box's top exactly on the border above its top cell is in the next
@@ -182,26 +182,33 @@ TEST_CASE("a tet whose box reaches the next cell's border has left its cells; on
     }
     return n;
   };
-  const std::size_t top_tets = tets_with_vertex_at(max_x);
+  const std::size_t top_tets = tets_with_vertex_at(max_x), bottom_tets = tets_with_vertex_at(min_x);
   REQUIRE(top_tets > 0);
-  for (const bool top : {true, false}) {
+  REQUIRE(bottom_tets > 0);
+  // The top vertices to the border above their cell (into the next cell),
+  // or the bottom ones down to the border below theirs (the same cell), or
+  // half a cell past it (the cell below); no other vertex moves.
+  struct Move {
+    const char* name;
+    double from, to;
+    std::size_t left;  // the tets expected in the overflow
+  };
+  const double top_border = (std::floor(max_x / cell) + 1.0) * cell, bottom_border = std::floor(min_x / cell) * cell;
+  for (const Move& m : {Move{"top to the next cell's border", max_x, top_border, top_tets},
+                        Move{"bottom to its own cell's border", min_x, bottom_border, 0},
+                        Move{"bottom into the cell below", min_x, bottom_border - 0.5 * cell, bottom_tets}}) {
     for (const bool at_once : {false, true}) {
-      INFO((top ? "top to the next border" : "bottom to its own border") << (at_once ? ", at once" : ", in pieces"));
+      INFO(m.name << (at_once ? ", at once" : ", in pieces"));
       World moved = start();
       TetHashDetector detector(moved, settings.detection);
       detector.enable_refresh();
       detector.hash_tets(moved, pairs);
-      // The top vertices to the border above their cell (into the next
-      // cell), or the bottom ones down to the border below theirs (the
-      // same cell); no other vertex moves.
-      const double from = top ? max_x : min_x;
-      const double to = top ? (std::floor(max_x / cell) + 1.0) * cell : std::floor(min_x / cell) * cell;
-      REQUIRE(to != from);
+      REQUIRE(m.to != m.from);
       for (Vec3& v : moved.bodies[1].x_m)
-        if (v.x() == from) v.x() = to;
+        if (v.x() == m.from) v.x() = m.to;
       if (at_once) detector.refresh_tets(moved, pairs, nullptr);
       else refresh(moved, pairs, detector, 5);
-      CHECK(detector.overflow_tets() == (top ? top_tets : 0));
+      CHECK(detector.overflow_tets() == m.left);
       CHECK(query_all(moved, pairs, &detector) == query_all(moved, pairs, nullptr));
     }
   }
