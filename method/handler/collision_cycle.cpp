@@ -339,16 +339,17 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
           work = m_detector.refresh_some_tets(world, m_pairs, m_granularity.tets_per_task, refreshed);
         else  // the paper's granularity: one task, on the pool when there is one
           work = m_detector.refresh_tets(world, m_pairs, m_pool.get());
-        if (refreshed) {
-          m_detector.mutable_overflow().begin_build();
-          m_stage = Stage::BuildOverflow;
-          // keep_table at the paper's granularity: the refresh stands for
-          // HashTets, one task with its table's build.
-          if (m_opening_refresh && !m_granularity.fine()) {
-            m_detector.mutable_overflow().build();
-            end_refresh(world);
-          }
+        if (!refreshed) break;
+        // At the paper's granularity refresh_tets() has built the overflow
+        // already. keep_table's opening refresh stands for HashTets, one
+        // task with its table's build; a rehash_stale refresh keeps its
+        // BuildOverflow task, which then finds the table built.
+        if (m_opening_refresh && !m_granularity.fine()) {
+          end_refresh(world);
+          break;
         }
+        m_detector.mutable_overflow().begin_build();
+        m_stage = Stage::BuildOverflow;
         break;
       }
       case Stage::BuildOverflow: {

@@ -40,26 +40,26 @@ int reported(CollisionCycle::Stage s) {
 TEST_CASE("stage work adds up to the step's work exactly, for every cycle method", "[stages]") {
   for (const auto& [scene_name, scene] : test::collision_scenes()) {
     for (const MethodInfo& info : method_registry()) {
-     for (const bool keep : {false, true}) {
       const bool has_keep = std::any_of(info.settings.begin(), info.settings.end(),
                                         [](const SettingSpec& spec) { return spec.name == "keep_table"; });
-      if (keep && !has_keep) continue;
-      MethodSettings settings(info.settings);
-      if (keep) settings.set("keep_table", true);
-      auto handler = info.make(settings);
-      if (!dynamic_cast<CycleHandler*>(handler.get())) continue;
-      INFO(scene_name << ", " << info.name << (keep ? " + keep_table" : ""));
-      World world = build_world(scene.world);
-      handler->init(world, test::settings_of(world, scene));
-      for (int s = 0; s < 12; ++s) {
-        Budget budget = Budget::work_units(400);
-        const StepReport r = handler->step(world, budget);
-        CHECK(r.stages.total_work() == r.work_units);
-        CHECK(r.stages.ms_of(CostStage::Apply) >= -1e-12);
-        for (double ms : r.stages.ms) CHECK(ms >= -1e-12);
-        world.step(scene.world.dt_s);
+      for (const bool keep : {false, true}) {
+        if (keep && !has_keep) continue;
+        MethodSettings settings(info.settings);
+        if (keep) settings.set("keep_table", true);
+        auto handler = info.make(settings);
+        if (!dynamic_cast<CycleHandler*>(handler.get())) continue;
+        INFO(scene_name << ", " << info.name << (keep ? " + keep_table" : ""));
+        World world = build_world(scene.world);
+        handler->init(world, test::settings_of(world, scene));
+        for (int s = 0; s < 12; ++s) {
+          Budget budget = Budget::work_units(400);
+          const StepReport r = handler->step(world, budget);
+          CHECK(r.stages.total_work() == r.work_units);
+          CHECK(r.stages.ms_of(CostStage::Apply) >= -1e-12);
+          for (double ms : r.stages.ms) CHECK(ms >= -1e-12);
+          world.step(scene.world.dt_s);
+        }
       }
-     }
     }
   }
 }
