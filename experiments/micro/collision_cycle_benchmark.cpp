@@ -24,6 +24,7 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <set>
@@ -226,6 +227,77 @@ void BM_Plates20Moving(benchmark::State& state) {
   run_cycles(state, f, settings, keep_schedule(state.range(0)), moving);
 }
 BENCHMARK(BM_Plates20Moving)->Arg(0)->Arg(125)->Unit(benchmark::kMillisecond);
+
+// The 2-thread speed-up measured side by side: BM_ThreadsPaired/<scene>/<keep>
+// (scene 0 the dog pair, 1 plates20; keep as in the moving benchmarks, with
+// the same motion when > 0) runs two cycles on one world, one on 1 thread and
+// one on 2, both in every iteration (which goes first alternates), so the
+// host's load, which moves this VM's single figures 1.3-2x between minutes,
+// weighs on both alike. speedup_2t: the one-thread cycles' time over the
+// two-thread cycles' (sums over the iterations), and speedup_<stage> the
+// same for each stage (the cycle's stage clock); ms_1t, ms_2t per cycle.
+// micro_machine_scaling gives the machine's own ratio for kinds of work
+// beside it. Stops with an error if the two cycles' contacts differ.
+void BM_ThreadsPaired(benchmark::State& state) {
+  const bool dogs = state.range(0) == 0;
+  if (dogs && !std::filesystem::exists(std::filesystem::path(TCBENCH_SHARED_MESHES) / "dog.mesh")) {
+    state.SkipWithError("dog.mesh not found (../shared/data/meshes)");
+    return;
+  }
+  Fixture f;
+  if (dogs) {
+    f = dog_pair();
+  } else {
+    f.scene = load_scene_file(resolve_scene("plates20", default_scene_dirs()));
+    f.world = build_world(f.scene.world);
+  }
+  std::vector<char> moving(f.world.bodies.size(), 0);
+  for (std::size_t b = 1; b < moving.size(); b += 2) moving[b] = 1;  // dog_b; every other plate
+  const bool move = state.range(1) > 0;
+  CollisionSettings one = resolve_collision_settings(f.world, f.scene.collision, f.scene.world.dt_s);
+  CollisionSettings two = one;
+  one.threads = 1;
+  two.threads = 2;
+  CollisionCycle cycles[2] = {CollisionCycle(f.world, one, DetectionMode::SpatialHash, keep_schedule(state.range(1))),
+                              CollisionCycle(f.world, two, DetectionMode::SpatialHash, keep_schedule(state.range(1)))};
+  double seconds[2] = {0.0, 0.0};
+  StageCosts stages[2];  // per thread count, summed over the iterations
+  std::int64_t calls = 0;
+  for (auto _ : state) {
+    if (move) {
+      state.PauseTiming();
+      move_between_cycles(f.world, moving, calls);
+      state.ResumeTiming();
+    }
+    for (int k = 0; k < 2; ++k) {
+      const int which = static_cast<int>((calls + k) % 2);
+      const auto start = std::chrono::steady_clock::now();
+      cycles[which].begin(f.world);
+      cycles[which].start_step_costs();
+      Budget unlimited = Budget::unlimited();
+      cycles[which].advance(f.world, unlimited);
+      seconds[which] += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      for (std::size_t st = 0; st < kCostStages; ++st) stages[which].ms[st] += cycles[which].step_costs().ms[st];
+    }
+    ++calls;
+    if (cycles[0].contacts().size() != cycles[1].contacts().size()) {
+      state.SkipWithError("the 1- and 2-thread cycles found different contacts");
+      return;
+    }
+  }
+  const double n = static_cast<double>(std::max<std::int64_t>(calls, 1));
+  state.counters["speedup_2t"] = seconds[1] > 0.0 ? seconds[0] / seconds[1] : 0.0;
+  state.counters["ms_1t"] = 1e3 * seconds[0] / n;
+  state.counters["ms_2t"] = 1e3 * seconds[1] / n;
+  state.counters["colliding"] = static_cast<double>(cycles[0].contacts().size());
+  // speedup_<stage>: the same ratio for each stage that took time (the
+  // serial ones, propagate and forces, show ~1).
+  for (std::size_t st = 0; st < kCostStages; ++st)
+    if (stages[1].ms[st] > 0.0 && static_cast<CostStage>(st) != CostStage::Apply)
+      state.counters["speedup_" + std::string(cost_stage_name(static_cast<CostStage>(st)))] =
+          stages[0].ms[st] / stages[1].ms[st];
+}
+BENCHMARK(BM_ThreadsPaired)->Args({0, 0})->Args({1, 0})->Args({0, 125})->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -12,6 +12,7 @@
 //             objects updated, manager-manager collide with narrow phase.
 //   BM_OursKeptTable: ours with the table kept between iterations and
 //             refreshed (not the paper's schedule; see its comment).
+//   BM_QueryClasses: ours alone, our queries' cost by kind of point.
 // Scenes: /0 dog.mesh (scaled to 1.34 m) against a copy shifted by half its
 // height (the collision-cycle benchmark's pair); /1 plates20 at the origin.
 // Each iteration first deforms the second object (a small wave, different per
@@ -45,6 +46,7 @@
 #include "method/detection/collision_pairs.hpp"
 #include "method/detection/tet_hash_detection.hpp"
 #include "method/handler/collision_settings.hpp"
+#include "method/handler/work_units.hpp"
 #include "sim/mesh/medit_io.hpp"
 
 namespace {
@@ -149,6 +151,53 @@ void BM_OursKeptTable(benchmark::State& state) {
   state.counters["overflow_tets"] = static_cast<double>(o.detector.overflow_tets());
 }
 
+// Where our queries spend, by kind of point (dog pair, the paper's fresh
+// hash, no motion): BM_QueryClasses/<class> queries only the points of one
+// class, again and again. Classes, decided by one query of each point first:
+//   0  outside the other dog's bounding box (its cell holds no tet of the
+//      other dog, or only ones the box test rejects)
+//   1  inside that box, no tet's box holds it (no candidate)
+//   2  some candidate, inside none
+//   3  inside a tet of the other dog (the colliding points)
+// Counters: points, ns_per_point, work_per_point (a unit for the query, one
+// a candidate). Class 3's cost is the bucket's other-dog entries scanned to
+// the hit, each an owner and a 48-byte box read.
+void BM_QueryClasses(benchmark::State& state) {
+  Ours o(0);
+  o.detector.hash_tets(o.world, o.pairs);
+  std::vector<Vec3> body_lo, body_hi;
+  for (const Body& b : o.world.bodies) {
+    Vec3 lo = b.x_m[0], hi = lo;
+    for (const Vec3& p : b.x_m) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+    body_lo.push_back(lo);
+    body_hi.push_back(hi);
+  }
+  std::vector<std::pair<std::int32_t, std::int32_t>> classes[4];
+  for (std::int32_t b = 0; b < 2; ++b)
+    for (std::int32_t v = 0; v < static_cast<std::int32_t>(o.world.bodies[b].x_m.size()); ++v) {
+      const Vec3& p = o.world.bodies[b].x_m[v];
+      const std::size_t other = static_cast<std::size_t>(1 - b);
+      std::uint64_t work = 0;
+      const bool hit = o.detector.query_point(o.world, o.pairs, b, v, work).has_value();
+      const bool outside = (p.array() < body_lo[other].array()).any() || (p.array() > body_hi[other].array()).any();
+      classes[outside ? 0 : hit ? 3 : work > work::kPointQuery ? 2 : 1].emplace_back(b, v);
+    }
+  const auto& points = classes[state.range(0)];
+  std::uint64_t work = 0;
+  std::int64_t inside = 0;
+  for (auto _ : state)
+    for (const auto& [b, v] : points) inside += o.detector.query_point(o.world, o.pairs, b, v, work).has_value();
+  benchmark::DoNotOptimize(inside);
+  const double n = static_cast<double>(std::max<std::size_t>(points.size(), 1));
+  state.counters["points"] = static_cast<double>(points.size());
+  state.counters["ns_per_point"] =
+      benchmark::Counter(n, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  state.counters["work_per_point"] =
+      static_cast<double>(work) / static_cast<double>(std::max<benchmark::IterationCount>(state.iterations(), 1)) / n;
+}
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::pair<std::int32_t, std::int32_t>>;
 
@@ -289,6 +338,7 @@ void BM_Fcl(benchmark::State& state) {
 
 BENCHMARK(BM_Ours)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_OursKeptTable)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_QueryClasses)->DenseRange(0, 3)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Cgal)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Fcl)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(3);
 
