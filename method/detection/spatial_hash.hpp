@@ -35,6 +35,7 @@
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
+#include <type_traits>
 #include <vector>
 
 #include "method/detection/fast_modulo.hpp"
@@ -122,7 +123,8 @@ class SpatialHash {
 
   /// insert_box() for the boxes i = 0 .. n-1 in order, then build(), on the
   /// pool's threads: box_of(i, lo, hi, item) gives box i, or returns false
-  /// to skip it. The table is exactly the serial one: the same items in every
+  /// to skip it (or box_of(part, i, lo, hi, item), if it takes the calling
+  /// thread's part, 0 .. threads - 1: for per-thread accumulators). The table is exactly the serial one: the same items in every
   /// bucket, in insertion order (only where each bucket's range sits in the
   /// sorted array differs, which no query sees). Returns the cells inserted.
   /// Each thread takes a contiguous range of boxes and computes their cells'
@@ -352,7 +354,11 @@ std::size_t SpatialHash::insert_all_and_build(std::size_t n, BoxOf&& box_of, Wor
     std::uint32_t item = 0;
     std::size_t count = 0;  // summed here, stored once: cells[] is one cache line for all parts
     for (std::size_t i = begin; i < end; ++i) {
-      if (!box_of(i, lo, hi, item)) continue;
+      if constexpr (std::is_invocable_v<BoxOf&, int, std::size_t, Vec3&, Vec3&, std::uint32_t&>) {
+        if (!box_of(part, i, lo, hi, item)) continue;
+      } else {
+        if (!box_of(i, lo, hi, item)) continue;
+      }
       count += buckets_of_box(lo, hi, [&](std::uint32_t b) { lists[owner_of(b, owner_shift)].push_back({item, b}); });
     }
     cells[p] = count;

@@ -38,6 +38,25 @@ bool walked(const World& world, const CollisionPairs& pairs, std::size_t b, bool
   return pairs.has_partner(b) && (!movable_only || can_move(world.bodies[b]));
 }
 
+// Each thread's body unions while a parallel pass stores boxes: one block a
+// thread, blocks two unions (112 bytes) apart so no cache line holds two
+// threads' unions (each tet's box may update one).
+class PartUnions {
+ public:
+  PartUnions(int parts, std::size_t bodies) : m_stride(bodies + 2), m_unions(static_cast<std::size_t>(parts) * m_stride) {}
+  BoxUnion& at(int part, std::size_t body) { return m_unions[static_cast<std::size_t>(part) * m_stride + body]; }
+  /// The union over all threads of body b's boxes.
+  BoxUnion merged(std::size_t body) const {
+    BoxUnion all;
+    for (std::size_t i = body; i < m_unions.size(); i += m_stride) all.add_union(m_unions[i]);
+    return all;
+  }
+
+ private:
+  std::size_t m_stride;
+  std::vector<BoxUnion> m_unions;
+};
+
 Contact make_contact(const World& world, std::int32_t object, std::int32_t vertex, std::int32_t other,
                      std::int32_t tet) {
   const auto& x = world.bodies[other].x_m;
@@ -62,6 +81,8 @@ TetHashDetector::TetHashDetector(const World& world, const DetectionSettings& se
     m_owner.insert(m_owner.end(), world.bodies[b].mesh->tet_count(), static_cast<std::int32_t>(b));
   }
   m_boxes.resize(total, TetBox{Vec3::Zero(), Vec3::Zero()});
+  m_body_boxes.resize(world.bodies.size());
+  m_partner_boxes.resize(world.bodies.size());
   m_scratch = make_scratch();
   const std::size_t table = settings.table_size ? settings.table_size : next_prime(2 * std::size_t(total) + 1);
   m_hash = SpatialHash(settings.cell_size_m, table, settings.hash);
@@ -70,7 +91,7 @@ TetHashDetector::TetHashDetector(const World& world, const DetectionSettings& se
 std::size_t TetHashDetector::memory_bytes() const {
   return m_hash.memory_bytes() + m_overflow.memory_bytes() + heap_bytes(m_hashed_cells) + heap_bytes(m_left_cells) +
          heap_bytes(m_body_tet_offset) +
-         heap_bytes(m_owner) + heap_bytes(m_boxes) + heap_bytes(m_scratch.tested);
+         heap_bytes(m_owner) + heap_bytes(m_boxes) + heap_bytes(m_body_boxes) + heap_bytes(m_partner_boxes) + heap_bytes(m_scratch.tested);
 }
 
 void TetHashDetector::store_box(const Body& body, std::size_t t, std::uint32_t id) {
@@ -96,7 +117,8 @@ std::uint64_t TetHashDetector::hash_tets(const World& world, const CollisionPair
   WorkerPool& threads = pool ? *pool : caller.emplace(1);
   // Global tet ids run body by body in hash order, so ranges of ids are
   // ranges of the serial walk.
-  const auto box_of = [&](std::size_t id, Vec3& lo, Vec3& hi, std::uint32_t& item) {
+  PartUnions part_boxes(threads.threads(), world.bodies.size());
+  const auto box_of = [&](int part, std::size_t id, Vec3& lo, Vec3& hi, std::uint32_t& item) {
     const std::int32_t b = m_owner[id];
     const Body& body = world.bodies[static_cast<std::size_t>(b)];
     const std::size_t t = id - m_body_tet_offset[static_cast<std::size_t>(b)];
@@ -106,14 +128,18 @@ std::uint64_t TetHashDetector::hash_tets(const World& world, const CollisionPair
     record_hashed_cells(item);
     lo = m_boxes[id].lo;
     hi = m_boxes[id].hi;
+    part_boxes.at(part, static_cast<std::size_t>(b)).add_box(lo, hi);
     return true;
   };
   const std::size_t cells = m_hash.insert_all_and_build(m_boxes.size(), box_of, threads);
+  for (std::size_t b = 0; b < world.bodies.size(); ++b) m_body_boxes[b] = part_boxes.merged(b);
+  finish_body_boxes(world, pairs);
   m_hash_body = world.bodies.size();
   return work::kCellInsert * cells;
 }
 
 void TetHashDetector::begin_hash() {
+  m_partner_boxes_ready = false;
   m_hash.begin_epoch();
   m_hash_body = 0;
   m_hash_tet = 0;
@@ -133,6 +159,7 @@ void TetHashDetector::enable_refresh() {
 }
 
 void TetHashDetector::begin_refresh() {
+  m_partner_boxes_ready = false;
   m_overflow.begin_epoch();
   m_overflow_active = false;
   m_overflow_tets = 0;
@@ -149,6 +176,11 @@ std::uint64_t TetHashDetector::walk_tets(const World& world, const CollisionPair
     const Body& body = world.bodies[m_hash_body];
     if (!walked(world, pairs, m_hash_body, movable_only)) continue;
     const std::vector<char>& degenerate = body.mesh->is_degenerate;
+    // A body's union starts afresh at its first tet: every tet of a walked
+    // body gets its box stored again in this walk (none yet when the
+    // cursor stands at 0, even when the walk resumes there).
+    BoxUnion& union_box = m_body_boxes[m_hash_body];
+    if (m_hash_tet == 0) union_box = BoxUnion{};
     for (; m_hash_tet < body.mesh->tet_count(); ++m_hash_tet) {
       if (visited == max_tets) {
         done = false;
@@ -159,10 +191,12 @@ std::uint64_t TetHashDetector::walk_tets(const World& world, const CollisionPair
       if (degenerate[t]) continue;
       const std::uint32_t id = m_body_tet_offset[m_hash_body] + static_cast<std::uint32_t>(t);
       store_box(body, t, id);
+      union_box.add_box(m_boxes[id].lo, m_boxes[id].hi);
       work += visit(id);
     }
   }
   done = true;
+  finish_body_boxes(world, pairs);
   return work;
 }
 
@@ -195,25 +229,40 @@ std::uint64_t TetHashDetector::refresh_tets(const World& world, const CollisionP
   // walk_tets()'s choice of tets, by global id: ids run body by body, tet by
   // tet, so ascending ids are the walk's order.
   m_left_cells.assign(m_boxes.size(), 0);
-  const auto check = [&](std::size_t begin, std::size_t end) {
+  std::optional<WorkerPool> caller;  // made only when needed: a pool is not free to build
+  WorkerPool& threads = pool ? *pool : caller.emplace(1);
+  PartUnions part_boxes(threads.threads(), world.bodies.size());
+  const auto check = [&](int part, std::size_t begin, std::size_t end) {
     std::uint64_t visited = 0;
+    // The current body's union in registers, handed to part_boxes when the
+    // body changes (ids run body by body), not a memory update a tet.
+    std::size_t body_of_union = world.bodies.size();
+    BoxUnion union_box;
     for (std::size_t id = begin; id < end; ++id) {
       const std::size_t b = static_cast<std::size_t>(m_owner[id]);
       const Body& body = world.bodies[b];
       const std::size_t t = id - m_body_tet_offset[b];
       if (!walked(world, pairs, b, true) || body.mesh->is_degenerate[t]) continue;
       store_box(body, t, static_cast<std::uint32_t>(id));
+      if (b != body_of_union) {
+        if (body_of_union < world.bodies.size()) part_boxes.at(part, body_of_union).add_union(union_box);
+        body_of_union = b;
+        union_box = BoxUnion{};
+      }
+      union_box.add_box(m_boxes[id].lo, m_boxes[id].hi);
       m_left_cells[id] = !within_hashed_cells(static_cast<std::uint32_t>(id));
       ++visited;
     }
+    if (body_of_union < world.bodies.size()) part_boxes.at(part, body_of_union).add_union(union_box);
     return visited;
   };
-  std::optional<WorkerPool> caller;  // made only when needed: a pool is not free to build
-  WorkerPool& threads = pool ? *pool : caller.emplace(1);
   std::vector<std::uint64_t> visited(static_cast<std::size_t>(threads.threads()), 0);
   threads.for_ranges(m_boxes.size(), [&](int part, std::size_t begin, std::size_t end) {
-    visited[static_cast<std::size_t>(part)] = check(begin, end);
+    visited[static_cast<std::size_t>(part)] = check(part, begin, end);
   });
+  // The refreshed bodies' unions anew; the others' boxes were not touched.
+  for (std::size_t b = 0; b < world.bodies.size(); ++b)
+    if (walked(world, pairs, b, true)) m_body_boxes[b] = part_boxes.merged(b);
   std::uint64_t work = 0;
   for (const std::uint64_t v : visited) work += work::kTetBox * v;
   // The tets that left their cells into the overflow, in id order, built at
@@ -228,9 +277,29 @@ std::uint64_t TetHashDetector::refresh_tets(const World& world, const CollisionP
     return true;
   };
   work += work::kCellInsert * m_overflow.insert_all_and_build(m_boxes.size(), box_of, threads);
+  finish_body_boxes(world, pairs);
   m_hash_body = world.bodies.size();
   m_overflow_active = m_overflow_tets > 0;
   return work;
+}
+
+void TetHashDetector::finish_body_boxes(const World& world, const CollisionPairs& pairs) {
+  // Unions of the walked bodies after b (suffix) and before b (prefix):
+  // every body's partner box in two passes, not one a pair.
+  const std::size_t n = world.bodies.size();
+  std::vector<BoxUnion> after(n + 1);
+  for (std::size_t b = n; b-- > 0;) {
+    after[b] = after[b + 1];
+    if (walked(world, pairs, b, false)) after[b].add_union(m_body_boxes[b]);
+  }
+  BoxUnion before;
+  for (std::size_t b = 0; b < n; ++b) {
+    BoxUnion others = before;
+    others.add_union(after[b + 1]);
+    m_partner_boxes[b] = others;
+    if (walked(world, pairs, b, false)) before.add_union(m_body_boxes[b]);
+  }
+  m_partner_boxes_ready = true;
 }
 
 std::uint64_t TetHashDetector::hash_some_tets(const World& world, const CollisionPairs& pairs, std::size_t max_tets,
@@ -251,14 +320,23 @@ std::optional<Contact> TetHashDetector::query_point(const World& world, const Co
     scratch.query = 1;
   }
   work += work::kPointQuery;
-  std::uint32_t best = UINT32_MAX;
-  const Vec3 grow = Vec3::Constant(margin_m);
   // The querying body's own tets are one range of ids. Without
   // self-collision they are rejected by that range, before any memory is
   // read: most entries near a surface are the body's own.
   const std::uint32_t own_first = m_body_tet_offset[static_cast<std::size_t>(object)];
   const std::uint32_t own_count =
       pairs.enabled(object, object) ? 0 : static_cast<std::uint32_t>(world.bodies[object].mesh->tet_count());
+  if (m_partner_boxes_ready && own_count > 0 && !(margin_m > 0.0)) {
+    // Outside every other hashed body's box union, each tet of the bucket
+    // would fail its box test: no contact, and the work of a query that
+    // searched one cell (and the overflow's).
+    if (m_partner_boxes[static_cast<std::size_t>(object)].rejects(p)) {
+      if (m_overflow_active) work += work::kPointQuery;
+      return std::nullopt;
+    }
+  }
+  std::uint32_t best = UINT32_MAX;
+  const Vec3 grow = Vec3::Constant(margin_m);
   // A tet met twice is tested once. In one bucket its entries are adjacent
   // (insert_box() puts all of a tet's cells in at once, and a bucket keeps
   // insertion order), so a query of one cell in the main table alone skips a

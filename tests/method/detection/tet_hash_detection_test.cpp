@@ -331,3 +331,121 @@ TEST_CASE("a tet met several times in a query's bucket is one candidate", "[dete
   }
   CHECK(checked > 3);
 }
+
+TEST_CASE("a query is charged a unit and a candidate for each tet of an enabled body whose stored box holds the point, "
+          "before and after motion, in every scene",
+          "[detection]") {
+  // The work of a query counted independently: with a table of one bucket
+  // every hashed tet is in the point's bucket, so a query is charged one
+  // unit, and one candidate for each tet of an enabled body (not incident to
+  // the point) whose box stored at hashing holds it, in id order up to the
+  // first that holds the point at the current positions. The query's first
+  // test (a point outside every other body's stored boxes ends at once)
+  // must change none of this: a union too small would charge less, one of
+  // the current positions instead of the stored boxes would too, once the
+  // bodies moved; with self-collision it must not reject at all.
+  for (const auto& [name, scene] : test::collision_scenes())
+    for (const double shift_cells : {0.0, 0.45, 3.0}) {
+      INFO(name << ", shift " << shift_cells << " cells");
+      World world = build_world(scene);
+      const CollisionPairs pairs(world);
+      DetectionSettings settings = test::settings_of(world, scene).detection;
+      settings.table_size = 1;
+      TetHashDetector detector(world, settings);
+      detector.hash_tets(world, pairs);
+      std::vector<std::vector<Vec3>> hashed_at;  // positions the boxes were stored at
+      for (const Body& b : world.bodies) hashed_at.push_back(b.x_m);
+      move_bodies(world, settings.cell_size_m, shift_cells, 0.2 * shift_cells);
+      int rejected_early = 0, charged = 0;
+      for (std::int32_t o = 0; o < static_cast<std::int32_t>(world.bodies.size()); ++o)
+        for (std::int32_t v = 0; v < static_cast<std::int32_t>(world.bodies[o].x_m.size()); ++v) {
+          const Vec3& p = world.bodies[o].x_m[v];
+          std::uint64_t expected = work::kPointQuery;
+          bool found = false;
+          for (std::size_t b = 0; b < world.bodies.size() && !found; ++b) {
+            if (!pairs.enabled(o, b)) continue;
+            const Body& body = world.bodies[b];
+            for (std::size_t t = 0; t < body.mesh->tet_count() && !found; ++t) {
+              const Tet& tet = body.mesh->tets[t];
+              if (body.mesh->is_degenerate[t]) continue;
+              if (b == static_cast<std::size_t>(o) && std::count(tet.begin(), tet.end(), v) > 0) continue;
+              const std::vector<Vec3>& x0 = hashed_at[b];
+              Vec3 lo = x0[tet[0]], hi = lo;
+              for (int k = 1; k < 4; ++k) lo = lo.cwiseMin(x0[tet[k]]), hi = hi.cwiseMax(x0[tet[k]]);
+              if ((p.array() < lo.array()).any() || (p.array() > hi.array()).any()) continue;
+              expected += work::kCandidate;
+              const auto& x = body.x_m;
+              found = point_in_tet_perturbed(p, x[tet[0]], x[tet[1]], x[tet[2]], x[tet[3]]);
+            }
+          }
+          std::uint64_t work = 0;
+          const auto hit = detector.query_point(world, pairs, o, v, work);
+          INFO("body " << o << ", vertex " << v);
+          CHECK(work == expected);
+          CHECK(hit.has_value() == found);
+          rejected_early += expected == work::kPointQuery;
+          charged += expected > work::kPointQuery;
+        }
+      // At rest every scene has points the query charges candidates for;
+      // three cells apart, points far from every other body's boxes.
+      if (shift_cells == 0.0) CHECK(charged > 0);
+      if (shift_cells == 3.0) CHECK(rejected_early > 0);
+    }
+}
+
+TEST_CASE("every hashing and refresh path keeps each body's box union exactly the union of its stored boxes",
+          "[detection][threads]") {
+  // The query's first test rejects a point outside the other bodies'
+  // unions, so a union a tet short would lose that tet's candidates. Each
+  // body's union must be exactly the one of its non-degenerate tets' boxes
+  // at the positions they were stored (empty for a body without a partner),
+  // after the piecewise hash (pieces of 7 tets, across bodies), the
+  // whole-stage hash on 0 to 3 threads, and either refresh after motion
+  // (which leaves the fixed passive bodies' unions from the hash).
+  const auto expected_union = [](const World& world, const CollisionPairs& pairs, std::size_t b) {
+    BoxUnion u;
+    if (!pairs.has_partner(b)) return u;
+    const Body& body = world.bodies[b];
+    for (std::size_t t = 0; t < body.mesh->tet_count(); ++t) {
+      if (body.mesh->is_degenerate[t]) continue;
+      const Tet& tet = body.mesh->tets[t];
+      Vec3 lo = body.x_m[tet[0]], hi = lo;
+      for (int k = 1; k < 4; ++k) lo = lo.cwiseMin(body.x_m[tet[k]]), hi = hi.cwiseMax(body.x_m[tet[k]]);
+      u.add_box(lo, hi);
+    }
+    return u;
+  };
+  const auto check_unions = [&](const World& world, const CollisionPairs& pairs, const TetHashDetector& detector) {
+    for (std::size_t b = 0; b < world.bodies.size(); ++b) {
+      INFO("body " << b);
+      const BoxUnion want = expected_union(world, pairs, b);
+      CHECK(detector.body_box(b).lo == want.lo);
+      CHECK(detector.body_box(b).hi == want.hi);
+      CHECK_FALSE(detector.body_box(b).poisoned());
+    }
+  };
+  for (const auto& [name, scene] : test::collision_scenes())
+    for (const int threads : {-1, 0, 1, 2, 3}) {  // -1: the piecewise hash
+      INFO(name << ", " << threads << " threads");
+      World world = build_world(scene);
+      const CollisionSettings settings = test::settings_of(world, scene);
+      const CollisionPairs pairs(world);
+      TetHashDetector detector(world, settings.detection);
+      detector.enable_refresh();
+      WorkerPool pool(std::max(threads, 1));
+      if (threads < 0) {
+        detector.begin_hash();
+        for (bool done = false; !done;) detector.hash_some_tets(world, pairs, 7, done);
+        detector.mutable_hash().build();
+      } else {
+        detector.hash_tets(world, pairs, threads > 0 ? &pool : nullptr);
+      }
+      check_unions(world, pairs, detector);
+      move_bodies(world, settings.detection.cell_size_m, 0.8, 0.3);
+      if (threads < 0)
+        refresh(world, pairs, detector, 7);
+      else
+        detector.refresh_tets(world, pairs, threads > 0 ? &pool : nullptr);
+      check_unions(world, pairs, detector);
+    }
+}
