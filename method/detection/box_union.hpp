@@ -7,7 +7,8 @@
 /// Contract (units: those of the boxes, m in the detector):
 ///   - Exact: lo and hi are the exact minimum and maximum of the added boxes'
 ///     coordinates (no rounding: min and max of doubles). Empty: lo = +inf,
-///     hi = -inf, so every point is outside and every box grows it.
+///     hi = -inf, so every point without a NaN coordinate is outside and
+///     every box grows it. A point with a NaN coordinate is never rejected.
 ///   - Touching counts as inside: rejects(p) is true only when p is strictly
 ///     below lo or strictly above hi along some axis, the query's box test
 ///     exactly (a point on a box's face is tested).
@@ -16,7 +17,9 @@
 ///     own coordinate rejects in the query. Caught by `probe`, the running
 ///     sum of every coordinate added, which a NaN makes NaN for good; inf -
 ///     inf in that sum does too, which only costs rejections, never makes a
-///     wrong one. One sum, not a NaN test in every min and max: those cost
+///     wrong one (with boxes reaching both infinities, whether it happens
+///     may depend on the order of the sum, so on how many threads built
+///     the union; answers and work do not). One sum, not a NaN test in every min and max: those cost
 ///     the kept table's refresh 10 % (micro_collision_cycle, ms_hash_tets).
 ///   - Infinite coordinates are ordinary values.
 

@@ -140,6 +140,9 @@ std::uint64_t TetHashDetector::hash_tets(const World& world, const CollisionPair
 
 void TetHashDetector::begin_hash() {
   m_partner_boxes_ready = false;
+  // Every union empty until its body's tets are stored again: a body the
+  // walk then skips (no partner) keeps an empty one.
+  for (BoxUnion& u : m_body_boxes) u = BoxUnion{};
   m_hash.begin_epoch();
   m_hash_body = 0;
   m_hash_tet = 0;
@@ -326,7 +329,9 @@ std::optional<Contact> TetHashDetector::query_point(const World& world, const Co
   const std::uint32_t own_first = m_body_tet_offset[static_cast<std::size_t>(object)];
   const std::uint32_t own_count =
       pairs.enabled(object, object) ? 0 : static_cast<std::uint32_t>(world.bodies[object].mesh->tet_count());
-  if (m_partner_boxes_ready && own_count > 0 && !(margin_m > 0.0)) {
+  // Not for a widened query, nor a NaN margin (whose grown boxes pass every
+  // box test); a negative one only shrinks the boxes the union holds.
+  if (m_partner_boxes_ready && own_count > 0 && margin_m <= 0.0) {
     // Outside every other hashed body's box union, each tet of the bucket
     // would fail its box test: no contact, and the work of a query that
     // searched one cell (and the overflow's).

@@ -333,17 +333,20 @@ TEST_CASE("a tet met several times in a query's bucket is one candidate", "[dete
 }
 
 TEST_CASE("a query is charged a unit and a candidate for each tet of an enabled body whose stored box holds the point, "
-          "before and after motion, in every scene",
+          "before and after motion and after a refresh, in every scene",
           "[detection]") {
   // The work of a query counted independently: with a table of one bucket
   // every hashed tet is in the point's bucket, so a query is charged one
   // unit, and one candidate for each tet of an enabled body (not incident to
-  // the point) whose box stored at hashing holds it, in id order up to the
-  // first that holds the point at the current positions. The query's first
-  // test (a point outside every other body's stored boxes ends at once)
-  // must change none of this: a union too small would charge less, one of
-  // the current positions instead of the stored boxes would too, once the
-  // bodies moved; with self-collision it must not reject at all.
+  // the point) whose stored box holds it, in id order up to the first that
+  // holds the point at the current positions. After a refresh that filled
+  // the overflow (a table of one bucket too, holding tets the main one
+  // already lists) a unit more for its cell, and the boxes are the current
+  // ones. The query's first test (a point outside every other body's stored
+  // boxes ends at once) must change none of this: a union too small would
+  // charge less, one of the current positions instead of the stored boxes
+  // would too, once the bodies moved, and so would an early end that forgot
+  // the overflow's unit; with self-collision it must not reject at all.
   for (const auto& [name, scene] : test::collision_scenes())
     for (const double shift_cells : {0.0, 0.45, 3.0}) {
       INFO(name << ", shift " << shift_cells << " cells");
@@ -352,44 +355,56 @@ TEST_CASE("a query is charged a unit and a candidate for each tet of an enabled 
       DetectionSettings settings = test::settings_of(world, scene).detection;
       settings.table_size = 1;
       TetHashDetector detector(world, settings);
+      detector.enable_refresh();
       detector.hash_tets(world, pairs);
-      std::vector<std::vector<Vec3>> hashed_at;  // positions the boxes were stored at
-      for (const Body& b : world.bodies) hashed_at.push_back(b.x_m);
+      std::vector<std::vector<Vec3>> stored_at;  // positions the boxes were stored at
+      for (const Body& b : world.bodies) stored_at.push_back(b.x_m);
       move_bodies(world, settings.cell_size_m, shift_cells, 0.2 * shift_cells);
-      int rejected_early = 0, charged = 0;
-      for (std::int32_t o = 0; o < static_cast<std::int32_t>(world.bodies.size()); ++o)
-        for (std::int32_t v = 0; v < static_cast<std::int32_t>(world.bodies[o].x_m.size()); ++v) {
-          const Vec3& p = world.bodies[o].x_m[v];
-          std::uint64_t expected = work::kPointQuery;
-          bool found = false;
-          for (std::size_t b = 0; b < world.bodies.size() && !found; ++b) {
-            if (!pairs.enabled(o, b)) continue;
-            const Body& body = world.bodies[b];
-            for (std::size_t t = 0; t < body.mesh->tet_count() && !found; ++t) {
-              const Tet& tet = body.mesh->tets[t];
-              if (body.mesh->is_degenerate[t]) continue;
-              if (b == static_cast<std::size_t>(o) && std::count(tet.begin(), tet.end(), v) > 0) continue;
-              const std::vector<Vec3>& x0 = hashed_at[b];
-              Vec3 lo = x0[tet[0]], hi = lo;
-              for (int k = 1; k < 4; ++k) lo = lo.cwiseMin(x0[tet[k]]), hi = hi.cwiseMax(x0[tet[k]]);
-              if ((p.array() < lo.array()).any() || (p.array() > hi.array()).any()) continue;
-              expected += work::kCandidate;
-              const auto& x = body.x_m;
-              found = point_in_tet_perturbed(p, x[tet[0]], x[tet[1]], x[tet[2]], x[tet[3]]);
+      const auto check_every_query = [&](std::uint64_t overflow_units, int& rejected_early, int& charged) {
+        for (std::int32_t o = 0; o < static_cast<std::int32_t>(world.bodies.size()); ++o)
+          for (std::int32_t v = 0; v < static_cast<std::int32_t>(world.bodies[o].x_m.size()); ++v) {
+            const Vec3& p = world.bodies[o].x_m[v];
+            std::uint64_t candidates = 0;
+            bool found = false;
+            for (std::size_t b = 0; b < world.bodies.size() && !found; ++b) {
+              if (!pairs.enabled(o, b)) continue;
+              const Body& body = world.bodies[b];
+              for (std::size_t t = 0; t < body.mesh->tet_count() && !found; ++t) {
+                const Tet& tet = body.mesh->tets[t];
+                if (body.mesh->is_degenerate[t]) continue;
+                if (b == static_cast<std::size_t>(o) && std::count(tet.begin(), tet.end(), v) > 0) continue;
+                const std::vector<Vec3>& x0 = stored_at[b];
+                Vec3 lo = x0[tet[0]], hi = lo;
+                for (int k = 1; k < 4; ++k) lo = lo.cwiseMin(x0[tet[k]]), hi = hi.cwiseMax(x0[tet[k]]);
+                if ((p.array() < lo.array()).any() || (p.array() > hi.array()).any()) continue;
+                candidates += work::kCandidate;
+                const auto& x = body.x_m;
+                found = point_in_tet_perturbed(p, x[tet[0]], x[tet[1]], x[tet[2]], x[tet[3]]);
+              }
             }
+            std::uint64_t work = 0;
+            const auto hit = detector.query_point(world, pairs, o, v, work);
+            INFO("body " << o << ", vertex " << v);
+            CHECK(work == work::kPointQuery + overflow_units + candidates);
+            CHECK(hit.has_value() == found);
+            rejected_early += candidates == 0;
+            charged += candidates > 0;
           }
-          std::uint64_t work = 0;
-          const auto hit = detector.query_point(world, pairs, o, v, work);
-          INFO("body " << o << ", vertex " << v);
-          CHECK(work == expected);
-          CHECK(hit.has_value() == found);
-          rejected_early += expected == work::kPointQuery;
-          charged += expected > work::kPointQuery;
-        }
+      };
+      int rejected_early = 0, charged = 0;
+      check_every_query(0, rejected_early, charged);
       // At rest every scene has points the query charges candidates for;
       // three cells apart, points far from every other body's boxes.
       if (shift_cells == 0.0) CHECK(charged > 0);
       if (shift_cells == 3.0) CHECK(rejected_early > 0);
+      // Refreshed: every box stored at the current positions (fixed passive
+      // bodies did not move), the overflow searched too once it holds tets.
+      detector.refresh_tets(world, pairs);
+      for (std::size_t b = 0; b < world.bodies.size(); ++b) stored_at[b] = world.bodies[b].x_m;
+      if (shift_cells > 0.0) CHECK(detector.overflow_tets() > 0);
+      rejected_early = charged = 0;
+      check_every_query(detector.overflow_tets() > 0 ? work::kPointQuery : 0, rejected_early, charged);
+      if (shift_cells == 0.0) CHECK(charged > 0);
     }
 }
 
