@@ -70,6 +70,21 @@ Fixture dog_pair() {
   return f;
 }
 
+Fixture plates20() {
+  Fixture f;
+  f.scene = load_scene_file(resolve_scene("plates20", default_scene_dirs()));
+  f.world = build_world(f.scene.world);
+  return f;
+}
+
+// The bodies the moving benchmarks move: every other one (dog_b; every
+// other plate of the stack).
+std::vector<char> every_other_body(const World& world) {
+  std::vector<char> moving(world.bodies.size(), 0);
+  for (std::size_t b = 1; b < moving.size(); b += 2) moving[b] = 1;
+  return moving;
+}
+
 // Of the cells the tets' boxes cover: the share in distinct buckets
 // (distinct buckets / distinct cells), and the cells a tet (the hash's
 // entries a tet: each costs a hash, a remainder and a push every cycle).
@@ -204,12 +219,7 @@ BENCHMARK(BM_DogPairMoving)
     ->Unit(benchmark::kMillisecond);
 
 void BM_Plates20(benchmark::State& state) {
-  static Fixture f = [] {
-    Fixture g;
-    g.scene = load_scene_file(resolve_scene("plates20", default_scene_dirs()));
-    g.world = build_world(g.scene.world);
-    return g;
-  }();
+  static Fixture f = plates20();
   CollisionSettings settings = resolve_collision_settings(f.world, f.scene.collision, f.scene.world.dt_s);
   settings.detection.hash = state.range(0) == 0 ? HashFunction::Mixed : HashFunction::Paper;
   settings.threads = static_cast<int>(state.range(1));
@@ -218,13 +228,9 @@ void BM_Plates20(benchmark::State& state) {
 BENCHMARK(BM_Plates20)->Args({0, 1})->Args({1, 1})->Args({0, 2})->Unit(benchmark::kMillisecond);
 
 void BM_Plates20Moving(benchmark::State& state) {
-  Fixture f;
-  f.scene = load_scene_file(resolve_scene("plates20", default_scene_dirs()));
-  f.world = build_world(f.scene.world);
+  Fixture f = plates20();
   CollisionSettings settings = resolve_collision_settings(f.world, f.scene.collision, f.scene.world.dt_s);
-  std::vector<char> moving(f.world.bodies.size(), 0);
-  for (std::size_t b = 1; b < moving.size(); b += 2) moving[b] = 1;
-  run_cycles(state, f, settings, keep_schedule(state.range(0)), moving);
+  run_cycles(state, f, settings, keep_schedule(state.range(0)), every_other_body(f.world));
 }
 BENCHMARK(BM_Plates20Moving)->Arg(0)->Arg(125)->Unit(benchmark::kMillisecond);
 
@@ -244,15 +250,8 @@ void BM_ThreadsPaired(benchmark::State& state) {
     state.SkipWithError("dog.mesh not found (../shared/data/meshes)");
     return;
   }
-  Fixture f;
-  if (dogs) {
-    f = dog_pair();
-  } else {
-    f.scene = load_scene_file(resolve_scene("plates20", default_scene_dirs()));
-    f.world = build_world(f.scene.world);
-  }
-  std::vector<char> moving(f.world.bodies.size(), 0);
-  for (std::size_t b = 1; b < moving.size(); b += 2) moving[b] = 1;  // dog_b; every other plate
+  Fixture f = dogs ? dog_pair() : plates20();
+  const std::vector<char> moving = every_other_body(f.world);
   const bool move = state.range(1) > 0;
   CollisionSettings one = resolve_collision_settings(f.world, f.scene.collision, f.scene.world.dt_s);
   CollisionSettings two = one;

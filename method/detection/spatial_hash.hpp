@@ -124,9 +124,10 @@ class SpatialHash {
   /// insert_box() for the boxes i = 0 .. n-1 in order, then build(), on the
   /// pool's threads: box_of(i, lo, hi, item) gives box i, or returns false
   /// to skip it (or box_of(part, i, lo, hi, item), if it takes the calling
-  /// thread's part, 0 .. threads - 1: for per-thread accumulators). The table is exactly the serial one: the same items in every
-  /// bucket, in insertion order (only where each bucket's range sits in the
-  /// sorted array differs, which no query sees). Returns the cells inserted.
+  /// thread's part, 0 .. threads - 1: for per-thread accumulators). The
+  /// table is exactly the serial one: the same items in every bucket, in
+  /// insertion order (only where each bucket's range sits in the sorted
+  /// array differs, which no query sees). Returns the cells inserted.
   /// Each thread takes a contiguous range of boxes and computes their cells'
   /// buckets into one list per owner (in order); an owner is a contiguous
   /// range of at most `buckets_per_owner` buckets (a power of two), and there

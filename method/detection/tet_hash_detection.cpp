@@ -238,7 +238,9 @@ std::uint64_t TetHashDetector::refresh_tets(const World& world, const CollisionP
   const auto check = [&](int part, std::size_t begin, std::size_t end) {
     std::uint64_t visited = 0;
     // The current body's union in registers, handed to part_boxes when the
-    // body changes (ids run body by body), not a memory update a tet.
+    // body changes (ids run body by body), not a memory update a tet (which
+    // measured 1.03-1.05 of this refresh's time, ms_hash_tets with
+    // keep_table, 6 paired rounds).
     std::size_t body_of_union = world.bodies.size();
     BoxUnion union_box;
     for (std::size_t id = begin; id < end; ++id) {

@@ -28,10 +28,9 @@
 ///      there with the same answer (none) and work (a unit, and one for the
 ///      overflow's cell), without reading the table (half the dog pair's
 ///      vertices: 78 ns a query with the table, 7 without, micro_peer_inside
-///      BM_QueryClasses/0).
-///      Widened queries (margin > 0) skip this test. Then the vertex is
-///      hashed; for each tet in its bucket: skip
-///      pairs that are not enabled and tets incident to the vertex
+///      BM_QueryClasses/0). Widened queries (margin > 0, or NaN) skip
+///      this test. Then the vertex is hashed; for each tet in its bucket:
+///      skip pairs that are not enabled and tets incident to the vertex
 ///      (self-collision), reject by the stored AABB, then the exact perturbed
 ///      point-in-tet test (perturbed_predicates.hpp). The cheapest filters
 ///      first: a bucket lists its tets by ascending global id, so without
