@@ -54,6 +54,19 @@ struct BoxUnion {
   bool rejects(const Vec3& p) const {
     return !poisoned() && ((p.array() < lo.array()).any() || (p.array() > hi.array()).any());
   }
+  /// Whether p is outside every added box grown by margin_m, each grown as
+  /// the widened query grows a tet's box (lo - margin, hi + margin, rounded
+  /// to double): rounding is monotone, so lo - margin here is at or below
+  /// every added box's grown lo (and hi + margin at or above its grown hi),
+  /// and a p strictly outside this grown union is strictly outside each
+  /// grown box. Never true for a NaN margin (a NaN bound compares false),
+  /// nor for an infinite one beside an infinite bound (inf - inf is NaN);
+  /// margin 0 is rejects(p).
+  bool rejects(const Vec3& p, double margin_m) const {
+    const Vec3 grow = Vec3::Constant(margin_m);
+    const Vec3 grown_lo = lo - grow, grown_hi = hi + grow;
+    return !poisoned() && ((p.array() < grown_lo.array()).any() || (p.array() > grown_hi.array()).any());
+  }
 };
 
 }  // namespace tcb

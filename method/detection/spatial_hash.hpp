@@ -176,6 +176,11 @@ class SpatialHash {
       if (entries.first != entries.last) f(entries.first, entries.last);
     });
   }
+  /// The number of cells for_each_range_in_box(lo, hi, .) visits (and its
+  /// HashOverflow for an absurd box), without visiting them.
+  std::size_t cells_visited(const Vec3& lo, const Vec3& hi) const {
+    return cell_range(lo, hi).cells();
+  }
   /// Calls f(item) for every entry of every bucket of the cells box [lo, hi]
   /// overlaps; returns the number of cells visited.
   template <typename F>
@@ -224,14 +229,22 @@ class SpatialHash {
   /// call concurrently.
   template <typename Sink>
   std::size_t buckets_of_box(const Vec3& lo, const Vec3& hi, Sink&& sink) const {
-    const std::int64_t i0 = cell_of(lo.x()), i1 = cell_of(hi.x()), j0 = cell_of(lo.y()), j1 = cell_of(hi.y()),
-                       k0 = cell_of(lo.z()), k1 = cell_of(hi.z());
-    check_box(i1 - i0 + 1, j1 - j0 + 1, k1 - k0 + 1);
+    const CellRange r = cell_range(lo, hi);
     if (m_function == HashFunction::Paper)
-      buckets_of_cells<HashFunction::Paper>(i0, i1, j0, j1, k0, k1, sink);
+      buckets_of_cells<HashFunction::Paper>(r.i0, r.i1, r.j0, r.j1, r.k0, r.k1, sink);
     else
-      buckets_of_cells<HashFunction::Mixed>(i0, i1, j0, j1, k0, k1, sink);
-    return static_cast<std::size_t>((i1 - i0 + 1) * (j1 - j0 + 1) * (k1 - k0 + 1));
+      buckets_of_cells<HashFunction::Mixed>(r.i0, r.i1, r.j0, r.j1, r.k0, r.k1, sink);
+    return r.cells();
+  }
+  /// The cells box [lo, hi] overlaps, checked (HashOverflow if absurd).
+  struct CellRange {
+    std::int64_t i0, i1, j0, j1, k0, k1;
+    std::size_t cells() const { return static_cast<std::size_t>((i1 - i0 + 1) * (j1 - j0 + 1) * (k1 - k0 + 1)); }
+  };
+  CellRange cell_range(const Vec3& lo, const Vec3& hi) const {
+    const CellRange r{cell_of(lo.x()), cell_of(hi.x()), cell_of(lo.y()), cell_of(hi.y()), cell_of(lo.z()), cell_of(hi.z())};
+    check_box(r.i1 - r.i0 + 1, r.j1 - r.j0 + 1, r.k1 - r.k0 + 1);
+    return r;
   }
   /// buckets_of_box()'s loop for one hash function (the function chosen once
   /// a box, the k term stepped by addition).

@@ -331,19 +331,23 @@ std::optional<Contact> TetHashDetector::query_point(const World& world, const Co
   const std::uint32_t own_first = m_body_tet_offset[static_cast<std::size_t>(object)];
   const std::uint32_t own_count =
       pairs.enabled(object, object) ? 0 : static_cast<std::uint32_t>(world.bodies[object].mesh->tet_count());
-  // Not for a widened query, nor a NaN margin (whose grown boxes pass every
-  // box test); a negative one only shrinks the boxes the union holds.
-  if (m_partner_boxes_ready && own_count > 0 && margin_m <= 0.0) {
-    // Outside every other hashed body's box union, each tet of the bucket
-    // would fail its box test: no contact, and the work of a query that
-    // searched one cell (and the overflow's).
-    if (m_partner_boxes[static_cast<std::size_t>(object)].rejects(p)) {
-      if (m_overflow_active) work += work::kPointQuery;
-      return std::nullopt;
+  const Vec3 grow = Vec3::Constant(margin_m);
+  // Outside every other hashed body's box union grown by the margin, each
+  // tet of every bucket searched would fail its (grown) box test: no
+  // contact, and the work of a query that searched its cells, counted
+  // without reading them. Not with self-collision (the own body's tets are
+  // not in the union); a NaN margin never rejects (BoxUnion::rejects).
+  if (m_partner_boxes_ready && own_count > 0 &&
+      m_partner_boxes[static_cast<std::size_t>(object)].rejects(p, margin_m)) {
+    if (margin_m > 0.0) {
+      work += work::kPointQuery * (m_hash.cells_visited(p - grow, p + grow) - 1);
+      if (m_overflow_active) work += work::kPointQuery * m_overflow.cells_visited(p - grow, p + grow);
+    } else if (m_overflow_active) {
+      work += work::kPointQuery;
     }
+    return std::nullopt;
   }
   std::uint32_t best = UINT32_MAX;
-  const Vec3 grow = Vec3::Constant(margin_m);
   // A tet met twice is tested once. In one bucket its entries are adjacent
   // (insert_box() puts all of a tet's cells in at once, and a bucket keeps
   // insertion order), so a query of one cell in the main table alone skips a

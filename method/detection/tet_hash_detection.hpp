@@ -23,13 +23,15 @@
 ///      is in the main table's bucket (cells unchanged) or the overflow's;
 ///   2. query_point(): first, without self-collision, the vertex against
 ///      the box around every other hashed body's tets (the union of their
-///      stored boxes, kept by every hashing and refresh path): outside it,
-///      every tet of its bucket would fail its box test, so the query ends
-///      there with the same answer (none) and work (a unit, and one for the
-///      overflow's cell), without reading the table (half the dog pair's
-///      vertices: 78 ns a query with the table, 7 without, micro_peer_inside
-///      BM_QueryClasses/0). Widened queries (margin > 0, or NaN) skip
-///      this test. Then the vertex is hashed; for each tet in its bucket:
+///      stored boxes, kept by every hashing and refresh path), grown by the
+///      margin of a widened query: outside it, every tet of every bucket
+///      searched would fail its (grown) box test, so the query ends there
+///      with the same answer (none) and work (a unit a cell searched, in
+///      each table searched), without reading the table (half the dog
+///      pair's vertices: 78 ns a query with the table, 7 without,
+///      micro_peer_inside BM_QueryClasses/0/0; widened a quarter cell, 234
+///      and 20 ns, BM_QueryClasses/0/25). A NaN margin never rejects.
+///      Then the vertex is hashed; for each tet in its bucket:
 ///      skip pairs that are not enabled and tets incident to the vertex
 ///      (self-collision), reject by the stored AABB, then the exact perturbed
 ///      point-in-tet test (perturbed_predicates.hpp). The cheapest filters

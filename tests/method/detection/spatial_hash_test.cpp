@@ -80,6 +80,36 @@ TEST_CASE("spatial hash: boxes, cells, epochs", "[hash]") {
   CHECK(next_prime(2) == 2);
 }
 
+TEST_CASE("spatial hash: cells_visited counts the cells for_each_range_in_box visits, and refuses what it refuses",
+          "[hash]") {
+  // The query's early end charges a widened query's cells without visiting
+  // them: the count must be the visit's, at cell borders, across the origin,
+  // at any scale, and an absurd box must throw as the visit does.
+  for (const double cell : {1e-9, 0.5, 1e9})
+    for (const HashFunction function : {HashFunction::Paper, HashFunction::Mixed}) {
+      SpatialHash hash(cell, next_prime(101), function);
+      hash.begin_epoch();
+      hash.build();
+      const Vec3 boxes[][2] = {{Vec3(0.1, 0.1, 0.1), Vec3(0.2, 0.2, 0.2)},
+                               {Vec3(-0.1, 0.1, 0.1), Vec3(0.6, 0.2, 0.2)},
+                               {Vec3(-1.0, -1.0, -1.0), Vec3(1.0, 1.0, 1.0)},  // on borders
+                               {Vec3(-2.25, 0.0, 3.0), Vec3(-0.75, 0.0, 4.5)},
+                               {Vec3(5.0, 5.0, 5.0), Vec3(5.0, 5.0, 5.0)}};
+      for (const auto& b : boxes) {
+        const Vec3 lo = cell * b[0], hi = cell * b[1];
+        const std::size_t visited = hash.for_each_range_in_box(lo, hi, [](const std::uint32_t*, const std::uint32_t*) {});
+        INFO("cell " << cell << ", box " << lo.transpose() << " .. " << hi.transpose());
+        CHECK(hash.cells_visited(lo, hi) == visited);
+        CHECK(static_cast<double>(visited) == hash.cells_of_box(lo, hi));
+      }
+      CHECK(hash.cells_visited(cell * Vec3(0.1, 0.1, 0.1), cell * Vec3(1.2, 0.2, 2.5)) == 6);  // 2 x 1 x 3
+      const Vec3 far = Vec3::Constant(1e6 * cell);
+      CHECK_THROWS_AS(hash.cells_visited(-far, far), HashOverflow);
+      CHECK_THROWS_AS(hash.for_each_range_in_box(-far, far, [](const std::uint32_t*, const std::uint32_t*) {}),
+                      HashOverflow);
+    }
+}
+
 TEST_CASE("spatial hash: a cell size whose inverse is not finite is refused", "[hash]") {
   // 1e-310 is subnormal: its inverse overflows to inf, and cell_of(0) would
   // cast 0 x inf (NaN) to an integer.

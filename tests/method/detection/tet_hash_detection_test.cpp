@@ -365,7 +365,11 @@ TEST_CASE("a query is charged a unit and a candidate for each tet of an enabled 
       std::vector<std::vector<Vec3>> stored_at;  // positions the boxes were stored at
       for (const Body& b : world.bodies) stored_at.push_back(b.x_m);
       move_bodies(world, settings.cell_size_m, shift_cells, 0.2 * shift_cells);
-      const auto check_every_query = [&](std::uint64_t overflow_units, int& without_candidates, int& charged) {
+      // margin_m > 0: the widened query, every box grown by the margin as the
+      // query grows it, and a unit for each cell within the margin of p (in
+      // each table searched).
+      const auto check_every_query = [&](double margin_m, bool overflow, int& without_candidates, int& charged) {
+        const Vec3 grow = Vec3::Constant(margin_m);
         for (std::int32_t o = 0; o < static_cast<std::int32_t>(world.bodies.size()); ++o)
           for (std::int32_t v = 0; v < static_cast<std::int32_t>(world.bodies[o].x_m.size()); ++v) {
             const Vec3& p = world.bodies[o].x_m[v];
@@ -379,16 +383,19 @@ TEST_CASE("a query is charged a unit and a candidate for each tet of an enabled 
                 if (body.mesh->is_degenerate[t]) continue;
                 if (b == static_cast<std::size_t>(o) && std::count(tet.begin(), tet.end(), v) > 0) continue;
                 const TestBox box = box_at(stored_at[b], tet);
-                if ((p.array() < box.lo.array()).any() || (p.array() > box.hi.array()).any()) continue;
+                const Vec3 lo = box.lo - grow, hi = box.hi + grow;
+                if ((p.array() < lo.array()).any() || (p.array() > hi.array()).any()) continue;
                 candidates += work::kCandidate;
                 const auto& x = body.x_m;
                 found = point_in_tet_perturbed(p, x[tet[0]], x[tet[1]], x[tet[2]], x[tet[3]]);
               }
             }
+            const auto cells = static_cast<std::uint64_t>(
+                margin_m > 0.0 ? detector.mutable_hash().cells_of_box(p - grow, p + grow) : 1.0);
             std::uint64_t work = 0;
-            const auto hit = detector.query_point(world, pairs, o, v, work);
-            INFO("body " << o << ", vertex " << v);
-            CHECK(work == work::kPointQuery + overflow_units + candidates);
+            const auto hit = detector.query_point(world, pairs, o, v, work, margin_m);
+            INFO("body " << o << ", vertex " << v << ", margin " << margin_m);
+            CHECK(work == work::kPointQuery * cells * (overflow ? 2 : 1) + candidates);
             CHECK(hit.has_value() == found);
             without_candidates += candidates == 0;
             charged += candidates > 0;
@@ -398,19 +405,25 @@ TEST_CASE("a query is charged a unit and a candidate for each tet of an enabled 
       // at rest every scene has points charged candidates; three cells
       // apart, points in no other body's tet box (those the first test may
       // reject; whether it does is not visible here, only that the work
-      // stays the scan's).
-      int without_candidates = 0, charged = 0;
-      check_every_query(0, without_candidates, charged);
-      if (shift_cells == 0.0) CHECK(charged > 0);
-      if (shift_cells == 3.0) CHECK(without_candidates > 0);
+      // stays the scan's). Margins: the paper's query, and widened ones
+      // reaching into the next cell.
+      const double cell_m = settings.cell_size_m;
+      for (const double margin_m : {0.0, 0.3 * cell_m}) {
+        int without_candidates = 0, charged = 0;
+        check_every_query(margin_m, false, without_candidates, charged);
+        if (shift_cells == 0.0) CHECK(charged > 0);
+        if (shift_cells == 3.0) CHECK(without_candidates > 0);
+      }
       // Refreshed: every box stored at the current positions (fixed passive
       // bodies did not move), the overflow searched too once it holds tets.
       detector.refresh_tets(world, pairs);
       for (std::size_t b = 0; b < world.bodies.size(); ++b) stored_at[b] = world.bodies[b].x_m;
       if (shift_cells > 0.0) CHECK(detector.overflow_tets() > 0);
-      without_candidates = charged = 0;
-      check_every_query(detector.overflow_tets() > 0 ? work::kPointQuery : 0, without_candidates, charged);
-      if (shift_cells == 0.0) CHECK(charged > 0);
+      for (const double margin_m : {0.0, 0.3 * cell_m}) {
+        int without_candidates = 0, charged = 0;
+        check_every_query(margin_m, detector.overflow_tets() > 0, without_candidates, charged);
+        if (shift_cells == 0.0) CHECK(charged > 0);
+      }
     }
 }
 
