@@ -21,14 +21,19 @@
 // cycle's collision.threads (its tet hashing, point queries and border depths
 // in parallel; the same contacts on every count, which the counter
 // `colliding` shows). ms_<stage>: the cycle's wall time per stage, per cycle.
+// BM_ThreadsPaired and BM_OrderPaired measure two cycles side by side (2
+// threads against 1; the dog pair renumbered along a Morton curve against
+// the file's numbering): see their comments.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "experiments/scene/scene_file.hpp"
 #include "method/handler/collision_cycle.hpp"
@@ -43,8 +48,64 @@ struct Fixture {
   World world;
 };
 
-Fixture dog_pair() {
+// Orders of a mesh's numbering, for BM_OrderPaired: the file's, or its tets
+// (by centroid), its vertices, or both sorted along a Morton curve.
+enum class Numbering { File = 0, MortonTets = 1, MortonVertices = 2, MortonBoth = 3 };
+
+// The Morton key of p within [lo, hi]: 21 bits an axis, interleaved.
+std::uint64_t morton_key(const Vec3& p, const Vec3& lo, const Vec3& hi) {
+  const auto spread = [](std::uint64_t v) {  // bit i to bit 3i
+    v &= 0x1fffff;
+    v = (v | v << 32) & 0x1f00000000ffffULL;
+    v = (v | v << 16) & 0x1f0000ff0000ffULL;
+    v = (v | v << 8) & 0x100f00f00f00f00fULL;
+    v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
+    v = (v | v << 2) & 0x1249249249249249ULL;
+    return v;
+  };
+  std::uint64_t key = 0;
+  for (int a = 0; a < 3; ++a) {
+    const double t = (p[a] - lo[a]) / std::max(hi[a] - lo[a], 1e-300);
+    key |= spread(static_cast<std::uint64_t>(std::clamp(t, 0.0, 1.0) * 2097151.0)) << a;
+  }
+  return key;
+}
+
+// The same mesh renumbered: vertices and/or tets sorted by Morton key (a
+// tet by its centroid's), each tet's vertices renamed, the whole rebuilt.
+TetMesh renumbered(const TetMesh& mesh, Numbering numbering) {
+  std::vector<Vec3> x = mesh.positions_m;
+  std::vector<Tet> tets = mesh.tets;
+  Vec3 lo = x[0], hi = lo;
+  for (const Vec3& p : x) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  if (numbering == Numbering::MortonVertices || numbering == Numbering::MortonBoth) {
+    std::vector<std::int32_t> order(x.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::int32_t>(i);
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::int32_t a, std::int32_t b) { return morton_key(x[a], lo, hi) < morton_key(x[b], lo, hi); });
+    std::vector<std::int32_t> renamed(x.size());
+    std::vector<Vec3> sorted(x.size());
+    for (std::size_t i = 0; i < order.size(); ++i) {
+      renamed[order[i]] = static_cast<std::int32_t>(i);
+      sorted[i] = x[order[i]];
+    }
+    x = std::move(sorted);
+    for (Tet& t : tets)
+      for (auto& v : t) v = renamed[v];
+  }
+  if (numbering == Numbering::MortonTets || numbering == Numbering::MortonBoth) {
+    const auto key = [&](const Tet& t) { return morton_key(0.25 * (x[t[0]] + x[t[1]] + x[t[2]] + x[t[3]]), lo, hi); };
+    std::stable_sort(tets.begin(), tets.end(), [&](const Tet& a, const Tet& b) { return key(a) < key(b); });
+  }
+  return build_tet_mesh(std::move(x), std::move(tets));
+}
+
+Fixture dog_pair(Numbering numbering = Numbering::File) {
   TetMesh dog = read_medit(std::filesystem::path(TCBENCH_SHARED_MESHES) / "dog.mesh");
+  if (numbering != Numbering::File) dog = renumbered(dog, numbering);
   for (Vec3& p : dog.positions_m) p *= 0.01;
   Vec3 lo = dog.positions_m[0], hi = lo;
   for (const Vec3& p : dog.positions_m) {
@@ -297,6 +358,65 @@ void BM_ThreadsPaired(benchmark::State& state) {
           stages[0].ms[st] / stages[1].ms[st];
 }
 BENCHMARK(BM_ThreadsPaired)->Args({0, 0})->Args({1, 0})->Args({0, 125})->Unit(benchmark::kMillisecond);
+
+// What renumbering along a space-filling curve would buy, measured side by
+// side: BM_OrderPaired/<numbering>/<keep> runs the dog pair as the file
+// numbers it and renumbered (1: tets along a Morton curve by centroid, 2:
+// vertices, 3: both), one cycle of each in every iteration (which goes first
+// alternates), with the moving benchmarks' motion and keep. time_ratio:
+// renumbered over the file's (sums over the iterations); ratio_<stage> the
+// same a stage. Not a setting of the method: renumbered, a mesh changes the
+// order of a bucket's tets (so the candidates a query is charged before its
+// hit, and which tet the smallest-id rule picks) and of every sum, so its
+// steps.csv is not the file's bit for bit. Stops with an error if the
+// colliding counts differ.
+void BM_OrderPaired(benchmark::State& state) {
+  if (!std::filesystem::exists(std::filesystem::path(TCBENCH_SHARED_MESHES) / "dog.mesh")) {
+    state.SkipWithError("dog.mesh not found (../shared/data/meshes)");
+    return;
+  }
+  Fixture f[2] = {dog_pair(), dog_pair(static_cast<Numbering>(state.range(0)))};
+  const std::vector<char> moving = every_other_body(f[0].world);
+  std::vector<CollisionCycle> cycles;
+  for (Fixture& g : f) {
+    CollisionSettings settings = resolve_collision_settings(g.world, g.scene.collision, g.scene.world.dt_s);
+    settings.threads = 1;
+    cycles.emplace_back(g.world, settings, DetectionMode::SpatialHash, keep_schedule(state.range(1)));
+  }
+  double seconds[2] = {0.0, 0.0};
+  StageCosts stages[2];
+  std::int64_t calls = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    for (Fixture& g : f) move_between_cycles(g.world, moving, calls);
+    state.ResumeTiming();
+    for (int k = 0; k < 2; ++k) {
+      const int which = static_cast<int>((calls + k) % 2);
+      const auto start = std::chrono::steady_clock::now();
+      cycles[which].begin(f[which].world);
+      cycles[which].start_step_costs();
+      Budget unlimited = Budget::unlimited();
+      cycles[which].advance(f[which].world, unlimited);
+      seconds[which] += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      for (std::size_t st = 0; st < kCostStages; ++st) stages[which].ms[st] += cycles[which].step_costs().ms[st];
+    }
+    ++calls;
+    if (cycles[0].contacts().size() != cycles[1].contacts().size()) {
+      state.SkipWithError("the renumbered dog pair found a different number of contacts");
+      return;
+    }
+  }
+  const double n = static_cast<double>(std::max<std::int64_t>(calls, 1));
+  state.counters["time_ratio"] = seconds[0] > 0.0 ? seconds[1] / seconds[0] : 0.0;
+  state.counters["ms_file"] = 1e3 * seconds[0] / n;
+  state.counters["ms_renumbered"] = 1e3 * seconds[1] / n;
+  state.counters["colliding"] = static_cast<double>(cycles[0].contacts().size());
+  for (std::size_t st = 0; st < kCostStages; ++st)
+    if (stages[0].ms[st] > 0.0 && static_cast<CostStage>(st) != CostStage::Apply)
+      state.counters["ratio_" + std::string(cost_stage_name(static_cast<CostStage>(st)))] =
+          stages[1].ms[st] / stages[0].ms[st];
+}
+BENCHMARK(BM_OrderPaired)->ArgsProduct({{1, 2, 3}, {0, 125}})->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
