@@ -54,6 +54,13 @@ struct BoxUnion {
   bool rejects(const Vec3& p) const {
     return !poisoned() && ((p.array() < lo.array()).any() || (p.array() > hi.array()).any());
   }
+  /// Whether box [box_lo, box_hi] lies strictly apart from every added box
+  /// (strictly apart from the union along some axis): no point of the union
+  /// is in it, touching counting as in, as for rejects(). Never true once
+  /// poisoned, nor for a box with a NaN coordinate.
+  bool misses(const Vec3& box_lo, const Vec3& box_hi) const {
+    return !poisoned() && ((box_hi.array() < lo.array()).any() || (box_lo.array() > hi.array()).any());
+  }
   /// Whether p is outside every added box grown by margin_m, each grown as
   /// the widened query grows a tet's box (lo - margin, hi + margin, rounded
   /// to double): rounding is monotone, so lo - margin here is at or below

@@ -108,8 +108,14 @@ void TetHashDetector::record_hashed_cells(std::uint32_t id) {
   }
 }
 
-std::uint64_t TetHashDetector::hash_tets(const World& world, const CollisionPairs& pairs, WorkerPool* pool) {
+std::uint64_t TetHashDetector::hash_tets(const World& world, const CollisionPairs& pairs, WorkerPool* pool,
+                                         bool queries_at_these_positions) {
   begin_hash();
+  // The box around every vertex that may query a body's tets (the vertices
+  // of its partners), when the table serves these positions only; a body
+  // with self-collision, or without that promise, has none (nothing skipped).
+  const bool skip = queries_at_these_positions && m_hashed_cells.empty();
+  if (skip) reach_of_queries(world, pairs);
   // Without a pool the owners' build runs on this thread: its random accesses
   // stay in a core's cache, where insert_box() and build() reach across the
   // whole table for every entry (spatial_hash.hpp).
@@ -118,6 +124,11 @@ std::uint64_t TetHashDetector::hash_tets(const World& world, const CollisionPair
   // Global tet ids run body by body in hash order, so ranges of ids are
   // ranges of the serial walk.
   PartUnions part_boxes(threads.threads(), world.bodies.size());
+  // Cells charged for tets not entered, a thread's count a cache line apart.
+  struct alignas(64) SkippedCells {
+    std::size_t cells = 0;
+  };
+  std::vector<SkippedCells> skipped(static_cast<std::size_t>(threads.threads()));
   const auto box_of = [&](int part, std::size_t id, Vec3& lo, Vec3& hi, std::uint32_t& item) {
     const std::int32_t b = m_owner[id];
     const Body& body = world.bodies[static_cast<std::size_t>(b)];
@@ -129,13 +140,36 @@ std::uint64_t TetHashDetector::hash_tets(const World& world, const CollisionPair
     lo = m_boxes[id].lo;
     hi = m_boxes[id].hi;
     part_boxes.at(part, static_cast<std::size_t>(b)).add_box(lo, hi);
+    if (skip && m_query_reach[static_cast<std::size_t>(b)].misses(lo, hi)) {
+      skipped[static_cast<std::size_t>(part)].cells += m_hash.cells_visited(lo, hi);  // throws as the insert would
+      return false;
+    }
     return true;
   };
-  const std::size_t cells = m_hash.insert_all_and_build(m_boxes.size(), box_of, threads);
+  std::size_t cells = m_hash.insert_all_and_build(m_boxes.size(), box_of, threads);
+  for (const SkippedCells& s : skipped) cells += s.cells;
   for (std::size_t b = 0; b < world.bodies.size(); ++b) m_body_boxes[b] = part_boxes.merged(b);
   finish_body_boxes(world, pairs);
   m_hash_body = world.bodies.size();
   return work::kCellInsert * cells;
+}
+
+void TetHashDetector::reach_of_queries(const World& world, const CollisionPairs& pairs) {
+  const std::size_t n = world.bodies.size();
+  std::vector<BoxUnion> vertices(n);  // each body's vertex box, for the bodies that query
+  for (std::size_t o = 0; o < n; ++o) {
+    if (!pairs.has_partner(o)) continue;
+    for (const Vec3& p : world.bodies[o].x_m) vertices[o].add_box(p, p);
+  }
+  m_query_reach.assign(n, BoxUnion{});
+  for (std::size_t b = 0; b < n; ++b) {
+    if (pairs.enabled(b, b)) {  // its own vertices query it: poisoned, so misses() nothing
+      m_query_reach[b].probe = std::numeric_limits<double>::quiet_NaN();
+      continue;
+    }
+    for (std::size_t o = 0; o < n; ++o)
+      if (o != b && pairs.enabled(o, b)) m_query_reach[b].add_union(vertices[o]);
+  }
 }
 
 void TetHashDetector::begin_hash() {

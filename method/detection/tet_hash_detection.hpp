@@ -71,7 +71,20 @@ class TetHashDetector {
   /// By SpatialHash::insert_all_and_build(), on the pool's threads or without
   /// one on the caller's: the same table, stored boxes, work units and errors
   /// on any thread count, and as begin_hash(), hash_some_tets() and a build.
-  std::uint64_t hash_tets(const World& world, const CollisionPairs& pairs, WorkerPool* pool = nullptr);
+  /// `queries_at_these_positions`: the caller promises that every query of
+  /// this table is made before any position changes (a cycle run to its end
+  /// in one call). Then, unless refreshing is enabled (a refresh keeps the
+  /// table for later positions), a tet whose box lies strictly apart from
+  /// the box around every vertex of the bodies that query it (no
+  /// self-collision in its body) is not entered: no query point can pass its
+  /// box test, so every query finds and is charged exactly what it would
+  /// with the tet entered. Its cells are still charged (work units
+  /// unchanged) and its box stored and in its body's union, as are its
+  /// HashOverflow errors (the same cell count, checked). The paper's
+  /// algorithm with the pre-filter PERFORMANCE.md measured (skip tets outside
+  /// the other object's box).
+  std::uint64_t hash_tets(const World& world, const CollisionPairs& pairs, WorkerPool* pool = nullptr,
+                          bool queries_at_these_positions = false);
   /// Stage 1 in pieces: begin_hash() empties the table; each hash_some_tets()
   /// hashes the next `max_tets` tets (in hash_tets()'s order) at the current
   /// positions, returns their work units, and sets `done` after the last;
@@ -182,6 +195,11 @@ class TetHashDetector {
   std::vector<BoxUnion> m_body_boxes;
   std::vector<BoxUnion> m_partner_boxes;
   bool m_partner_boxes_ready = false;
+  /// Per body, the box around the vertices of the bodies that query its tets
+  /// (poisoned with self-collision): hash_tets() leaves out a tet strictly
+  /// apart from it when its caller queries at the hash's positions only.
+  std::vector<BoxUnion> m_query_reach;
+  void reach_of_queries(const World& world, const CollisionPairs& pairs);
   /// Makes m_partner_boxes from m_body_boxes after a complete hash or refresh.
   void finish_body_boxes(const World& world, const CollisionPairs& pairs);
   QueryScratch m_scratch;                             // the single-threaded queries'

@@ -482,3 +482,54 @@ TEST_CASE("every hashing and refresh path keeps each body's box union exactly th
       check_unions(world, pairs, detector);
     }
 }
+
+TEST_CASE("a hash made for queries at its own positions leaves out the tets no query point reaches, and every query "
+          "finds and is charged what it would with them in",
+          "[detection][threads]") {
+  // hash_tets(..., queries_at_these_positions = true) skips a tet strictly
+  // apart from the box around its querying bodies' vertices. Every vertex's
+  // query must give the same contact and work as with the full table, the
+  // hash the same work, on 0 to 2 threads; the table must hold fewer entries
+  // where bodies stand apart (or the test checks nothing), and nothing may be
+  // left out once refreshing is enabled (a refreshed table serves later
+  // positions). A self-colliding body's tets, which its own vertices query,
+  // must all stay in: the folded pair's own queries check that.
+  bool some_skipped = false;
+  for (const auto& [name, scene] : test::collision_scenes())
+    for (const double shift_cells : {0.0, 0.45, 3.0}) {
+      INFO(name << ", shift " << shift_cells << " cells");
+      World world = build_world(scene);
+      const CollisionPairs pairs(world);
+      const DetectionSettings settings = test::settings_of(world, scene).detection;
+      move_bodies(world, settings.cell_size_m, shift_cells, 0.2 * shift_cells);
+      TetHashDetector full(world, settings);
+      const std::uint64_t full_work = full.hash_tets(world, pairs);
+      for (const int threads : {0, 1, 2}) {
+        INFO(threads << " threads");
+        WorkerPool pool(std::max(threads, 1));
+        TetHashDetector reached(world, settings);
+        CHECK(reached.hash_tets(world, pairs, threads > 0 ? &pool : nullptr, true) == full_work);
+        CHECK(reached.hash().entry_count() <= full.hash().entry_count());
+        some_skipped = some_skipped || reached.hash().entry_count() < full.hash().entry_count();
+        for (std::int32_t o = 0; o < static_cast<std::int32_t>(world.bodies.size()); ++o)
+          for (std::int32_t v = 0; v < static_cast<std::int32_t>(world.bodies[o].x_m.size()); ++v) {
+            std::uint64_t want_work = 0, got_work = 0;
+            const auto want = full.query_point(world, pairs, o, v, want_work);
+            const auto got = reached.query_point(world, pairs, o, v, got_work);
+            INFO("body " << o << ", vertex " << v);
+            CHECK(got_work == want_work);
+            REQUIRE(got.has_value() == want.has_value());
+            if (got) CHECK(std::tie(got->other, got->tet) == std::tie(want->other, want->tet));
+          }
+        for (std::size_t b = 0; b < world.bodies.size(); ++b) {
+          CHECK(reached.body_box(b).lo == full.body_box(b).lo);  // every box stored, skipped or not
+          CHECK(reached.body_box(b).hi == full.body_box(b).hi);
+        }
+      }
+      TetHashDetector refreshing(world, settings);
+      refreshing.enable_refresh();
+      CHECK(refreshing.hash_tets(world, pairs, nullptr, true) == full_work);
+      CHECK(refreshing.hash().entry_count() == full.hash().entry_count());
+    }
+  CHECK(some_skipped);
+}
