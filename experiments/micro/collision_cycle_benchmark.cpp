@@ -7,7 +7,8 @@
 // of the vertices inside the other dog (1,541 of 15,460).
 // bucket_share: distinct buckets / distinct cells the tets occupy (1 = no two
 // occupied cells share a bucket; lower = more hash collisions).
-// cells_per_tet: cells a tet's box covers, so hash entries a tet a cycle.
+// cells_per_tet: cells a tet's box covers, so hash entries a tet a cycle (fewer
+// are entered where a budgetless cycle leaves out tets no query point reaches).
 // BM_Plates20/<hash>/<threads>: the plates20 scene (15,360 tets, at the origin).
 // BM_DogPairMoving/<keep>/<threads>, BM_Plates20Moving/<keep>: the same
 // scenes moving between cycles as a step would move them (dog_b, and every

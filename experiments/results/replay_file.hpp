@@ -29,7 +29,9 @@
 ///                      max xyz; m): the tets' boxes at the frame's positions
 ///          cells       int32 x 3 per grid cell some tet's box overlaps
 ///                      (sorted, unique; cell = floor(x / cell_size_m)): the
-///                      cells the run's hash would fill at these positions.
+///                      cells the run's hash would fill at these positions
+///                      (a budgetless cycle's hash leaves out the tets no
+///                      query point reaches; their cells are still here).
 ///                      Recomputed here, not read from the method: an
 ///                      interruptible cycle may hold a hash of older
 ///                      positions. At most kMaxDebugCells a frame

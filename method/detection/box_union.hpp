@@ -8,7 +8,9 @@
 ///   - Exact: lo and hi are the exact minimum and maximum of the added boxes'
 ///     coordinates (no rounding: min and max of doubles). Empty: lo = +inf,
 ///     hi = -inf, so every point without a NaN coordinate is outside and
-///     every box grows it. A point with a NaN coordinate is never rejected.
+///     every box grows it. A NaN coordinate of a point decides nothing on its
+///     axis (its comparisons are false), as in the query's box test; the
+///     point is rejected only by another axis.
 ///   - Touching counts as inside: rejects(p) is true only when p is strictly
 ///     below lo or strictly above hi along some axis, the query's box test
 ///     exactly (a point on a box's face is tested).
@@ -57,7 +59,9 @@ struct BoxUnion {
   /// Whether box [box_lo, box_hi] lies strictly apart from every added box
   /// (strictly apart from the union along some axis): no point of the union
   /// is in it, touching counting as in, as for rejects(). Never true once
-  /// poisoned, nor for a box with a NaN coordinate.
+  /// poisoned; a NaN coordinate of the box decides nothing on its axis (only
+  /// another axis can make the box miss, and then no point of the union
+  /// passes the query's box test either).
   bool misses(const Vec3& box_lo, const Vec3& box_hi) const {
     return !poisoned() && ((box_hi.array() < lo.array()).any() || (box_lo.array() > hi.array()).any());
   }

@@ -91,7 +91,8 @@ TetHashDetector::TetHashDetector(const World& world, const DetectionSettings& se
 std::size_t TetHashDetector::memory_bytes() const {
   return m_hash.memory_bytes() + m_overflow.memory_bytes() + heap_bytes(m_hashed_cells) + heap_bytes(m_left_cells) +
          heap_bytes(m_body_tet_offset) +
-         heap_bytes(m_owner) + heap_bytes(m_boxes) + heap_bytes(m_body_boxes) + heap_bytes(m_partner_boxes) + heap_bytes(m_scratch.tested);
+         heap_bytes(m_owner) + heap_bytes(m_boxes) + heap_bytes(m_body_boxes) + heap_bytes(m_partner_boxes) + heap_bytes(m_query_reach) +
+         heap_bytes(m_scratch.tested);
 }
 
 void TetHashDetector::store_box(const Body& body, std::size_t t, std::uint32_t id) {

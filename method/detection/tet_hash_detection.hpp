@@ -3,7 +3,9 @@
 /// 2003, in the paper's order, which makes one point query the atomic task):
 ///   1. hash_tets(): every non-degenerate tet of every body that has a
 ///      collision partner goes into all cells its AABB covers (the paper: one
-///      task, not interruptible; the AABBs are kept for step 2). Resumable in
+///      task, not interruptible; the AABBs are kept for step 2; for a caller
+///      that queries at once, unwidened, the tets no query point can reach
+///      are charged but left out: see hash_tets()). Resumable in
 ///      pieces: begin_hash(), hash_some_tets() until done, then the table's
 ///      begin_build()/build_some() (hash()); the result is hash_tets()'s
 ///      whenever positions do not change in between. Tets hashed in an earlier
@@ -73,16 +75,18 @@ class TetHashDetector {
   /// on any thread count, and as begin_hash(), hash_some_tets() and a build.
   /// `queries_at_these_positions`: the caller promises that every query of
   /// this table is made before any position changes (a cycle run to its end
-  /// in one call). Then, unless refreshing is enabled (a refresh keeps the
-  /// table for later positions), a tet whose box lies strictly apart from
-  /// the box around every vertex of the bodies that query it (no
-  /// self-collision in its body) is not entered: no query point can pass its
-  /// box test, so every query finds and is charged exactly what it would
-  /// with the tet entered. Its cells are still charged (work units
-  /// unchanged) and its box stored and in its body's union, as are its
-  /// HashOverflow errors (the same cell count, checked). The paper's
-  /// algorithm with the pre-filter PERFORMANCE.md measured (skip tets outside
-  /// the other object's box).
+  /// in one call) and unwidened (margin_m <= 0). Then, unless refreshing is
+  /// enabled (a refresh keeps the table for later positions), a tet whose
+  /// box lies strictly apart from the box around every vertex of the bodies
+  /// that query it (no self-collision in its body) is not entered: no query
+  /// point can pass its box test, so every query finds and is charged
+  /// exactly what it would with the tet entered (a widened query could pass
+  /// its grown box and be charged it: hence unwidened). Its cells are still
+  /// charged (work units unchanged), its HashOverflow thrown as the insert
+  /// would (the same cell count, checked), its box stored and in its body's
+  /// union. Only the table is smaller (memory_bytes() may be too). The
+  /// paper's algorithm with a pre-filter the design notes measured (skip
+  /// tets outside the other object's box).
   std::uint64_t hash_tets(const World& world, const CollisionPairs& pairs, WorkerPool* pool = nullptr,
                           bool queries_at_these_positions = false);
   /// Stage 1 in pieces: begin_hash() empties the table; each hash_some_tets()

@@ -312,9 +312,11 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
       case Stage::HashTets:
         if (!m_granularity.fine()) {
           // Unlimited, this call runs the cycle to its end: every query of
-          // the table is made at these positions, so the detector may leave
+          // the table is made at these positions, so unless they are widened
+          // (widen_stale, once a cycle spans steps) the detector may leave
           // out the tets no query point can reach (the same answers and work).
-          work = m_detector.hash_tets(world, m_pairs, m_pool.get(), budget.kind() == BudgetKind::None);
+          work = m_detector.hash_tets(world, m_pairs, m_pool.get(),
+                                      budget.kind() == BudgetKind::None && !(m_tet_margin_m > 0.0));
           m_fresh_step = world.step_index;
           m_table_kept = true;
           ++m_fresh_tet_hashes;
