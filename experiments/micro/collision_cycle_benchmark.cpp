@@ -296,6 +296,35 @@ void BM_Plates20Moving(benchmark::State& state) {
 }
 BENCHMARK(BM_Plates20Moving)->Arg(0)->Arg(125)->Unit(benchmark::kMillisecond);
 
+// Two cycles timed side by side, for the paired benchmarks: each
+// iteration runs both, which goes first alternating with the call, so the
+// host's load weighs on both alike. Seconds and stage times summed a cycle.
+struct SideBySide {
+  double seconds[2] = {0.0, 0.0};
+  StageCosts stages[2];
+
+  void run(CollisionCycle* cycles[2], World* worlds[2], std::int64_t call) {
+    for (int k = 0; k < 2; ++k) {
+      const int which = static_cast<int>((call + k) % 2);
+      const auto start = std::chrono::steady_clock::now();
+      cycles[which]->begin(*worlds[which]);
+      cycles[which]->start_step_costs();
+      Budget unlimited = Budget::unlimited();
+      cycles[which]->advance(*worlds[which], unlimited);
+      seconds[which] += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      for (std::size_t st = 0; st < kCostStages; ++st) stages[which].ms[st] += cycles[which]->step_costs().ms[st];
+    }
+  }
+  /// Counters <prefix><stage>: cycle num's stage time over cycle den's, for
+  /// each stage den spent time in.
+  void stage_ratios(benchmark::State& state, const std::string& prefix, int num, int den) const {
+    for (std::size_t st = 0; st < kCostStages; ++st)
+      if (stages[den].ms[st] > 0.0 && static_cast<CostStage>(st) != CostStage::Apply)
+        state.counters[prefix + std::string(cost_stage_name(static_cast<CostStage>(st)))] =
+            stages[num].ms[st] / stages[den].ms[st];
+  }
+};
+
 // The 2-thread speed-up measured side by side: BM_ThreadsPaired/<scene>/<keep>
 // (scene 0 the dog pair, 1 plates20; keep as in the moving benchmarks, with
 // the same motion when > 0) runs two cycles on one world, one on 1 thread and
@@ -321,8 +350,9 @@ void BM_ThreadsPaired(benchmark::State& state) {
   two.threads = 2;
   CollisionCycle cycles[2] = {CollisionCycle(f.world, one, DetectionMode::SpatialHash, keep_schedule(state.range(1))),
                               CollisionCycle(f.world, two, DetectionMode::SpatialHash, keep_schedule(state.range(1)))};
-  double seconds[2] = {0.0, 0.0};
-  StageCosts stages[2];  // per thread count, summed over the iterations
+  CollisionCycle* both[2] = {&cycles[0], &cycles[1]};
+  World* worlds[2] = {&f.world, &f.world};
+  SideBySide pair;  // 0: one thread, 1: two
   std::int64_t calls = 0;
   for (auto _ : state) {
     if (move) {
@@ -330,16 +360,7 @@ void BM_ThreadsPaired(benchmark::State& state) {
       move_between_cycles(f.world, moving, calls);
       state.ResumeTiming();
     }
-    for (int k = 0; k < 2; ++k) {
-      const int which = static_cast<int>((calls + k) % 2);
-      const auto start = std::chrono::steady_clock::now();
-      cycles[which].begin(f.world);
-      cycles[which].start_step_costs();
-      Budget unlimited = Budget::unlimited();
-      cycles[which].advance(f.world, unlimited);
-      seconds[which] += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      for (std::size_t st = 0; st < kCostStages; ++st) stages[which].ms[st] += cycles[which].step_costs().ms[st];
-    }
+    pair.run(both, worlds, calls);
     ++calls;
     if (cycles[0].contacts().size() != cycles[1].contacts().size()) {
       state.SkipWithError("the 1- and 2-thread cycles found different contacts");
@@ -347,16 +368,13 @@ void BM_ThreadsPaired(benchmark::State& state) {
     }
   }
   const double n = static_cast<double>(std::max<std::int64_t>(calls, 1));
-  state.counters["speedup_2t"] = seconds[1] > 0.0 ? seconds[0] / seconds[1] : 0.0;
-  state.counters["ms_1t"] = 1e3 * seconds[0] / n;
-  state.counters["ms_2t"] = 1e3 * seconds[1] / n;
+  state.counters["speedup_2t"] = pair.seconds[1] > 0.0 ? pair.seconds[0] / pair.seconds[1] : 0.0;
+  state.counters["ms_1t"] = 1e3 * pair.seconds[0] / n;
+  state.counters["ms_2t"] = 1e3 * pair.seconds[1] / n;
   state.counters["colliding"] = static_cast<double>(cycles[0].contacts().size());
   // speedup_<stage>: the same ratio for each stage that took time (the
   // serial ones, propagate and forces, show ~1).
-  for (std::size_t st = 0; st < kCostStages; ++st)
-    if (stages[1].ms[st] > 0.0 && static_cast<CostStage>(st) != CostStage::Apply)
-      state.counters["speedup_" + std::string(cost_stage_name(static_cast<CostStage>(st)))] =
-          stages[0].ms[st] / stages[1].ms[st];
+  pair.stage_ratios(state, "speedup_", 0, 1);
 }
 BENCHMARK(BM_ThreadsPaired)->Args({0, 0})->Args({1, 0})->Args({0, 125})->Unit(benchmark::kMillisecond);
 
@@ -384,23 +402,15 @@ void BM_OrderPaired(benchmark::State& state) {
     settings.threads = 1;
     cycles.emplace_back(g.world, settings, DetectionMode::SpatialHash, keep_schedule(state.range(1)));
   }
-  double seconds[2] = {0.0, 0.0};
-  StageCosts stages[2];
+  CollisionCycle* both[2] = {&cycles[0], &cycles[1]};
+  World* worlds[2] = {&f[0].world, &f[1].world};
+  SideBySide pair;  // 0: the file's numbering, 1: renumbered
   std::int64_t calls = 0;
   for (auto _ : state) {
     state.PauseTiming();
     for (Fixture& g : f) move_between_cycles(g.world, moving, calls);
     state.ResumeTiming();
-    for (int k = 0; k < 2; ++k) {
-      const int which = static_cast<int>((calls + k) % 2);
-      const auto start = std::chrono::steady_clock::now();
-      cycles[which].begin(f[which].world);
-      cycles[which].start_step_costs();
-      Budget unlimited = Budget::unlimited();
-      cycles[which].advance(f[which].world, unlimited);
-      seconds[which] += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      for (std::size_t st = 0; st < kCostStages; ++st) stages[which].ms[st] += cycles[which].step_costs().ms[st];
-    }
+    pair.run(both, worlds, calls);
     ++calls;
     if (cycles[0].contacts().size() != cycles[1].contacts().size()) {
       state.SkipWithError("the renumbered dog pair found a different number of contacts");
@@ -408,14 +418,11 @@ void BM_OrderPaired(benchmark::State& state) {
     }
   }
   const double n = static_cast<double>(std::max<std::int64_t>(calls, 1));
-  state.counters["time_ratio"] = seconds[0] > 0.0 ? seconds[1] / seconds[0] : 0.0;
-  state.counters["ms_file"] = 1e3 * seconds[0] / n;
-  state.counters["ms_renumbered"] = 1e3 * seconds[1] / n;
+  state.counters["time_ratio"] = pair.seconds[0] > 0.0 ? pair.seconds[1] / pair.seconds[0] : 0.0;
+  state.counters["ms_file"] = 1e3 * pair.seconds[0] / n;
+  state.counters["ms_renumbered"] = 1e3 * pair.seconds[1] / n;
   state.counters["colliding"] = static_cast<double>(cycles[0].contacts().size());
-  for (std::size_t st = 0; st < kCostStages; ++st)
-    if (stages[0].ms[st] > 0.0 && static_cast<CostStage>(st) != CostStage::Apply)
-      state.counters["ratio_" + std::string(cost_stage_name(static_cast<CostStage>(st)))] =
-          stages[1].ms[st] / stages[0].ms[st];
+  pair.stage_ratios(state, "ratio_", 1, 0);
 }
 BENCHMARK(BM_OrderPaired)->ArgsProduct({{1, 2, 3}, {0, 125}})->Unit(benchmark::kMillisecond);
 

@@ -57,6 +57,26 @@ class PartUnions {
   std::vector<BoxUnion> m_unions;
 };
 
+// For each body b, the union of `boxes` over the walked bodies other than
+// b: the walked bodies after b (suffix) and before b (prefix), two passes,
+// not one a pair.
+std::vector<BoxUnion> unions_of_others(const World& world, const CollisionPairs& pairs,
+                                       const std::vector<BoxUnion>& boxes) {
+  const std::size_t n = world.bodies.size();
+  std::vector<BoxUnion> after(n + 1), others(n);
+  for (std::size_t b = n; b-- > 0;) {
+    after[b] = after[b + 1];
+    if (walked(world, pairs, b, false)) after[b].add_union(boxes[b]);
+  }
+  BoxUnion before;
+  for (std::size_t b = 0; b < n; ++b) {
+    others[b] = before;
+    others[b].add_union(after[b + 1]);
+    if (walked(world, pairs, b, false)) before.add_union(boxes[b]);
+  }
+  return others;
+}
+
 Contact make_contact(const World& world, std::int32_t object, std::int32_t vertex, std::int32_t other,
                      std::int32_t tet) {
   const auto& x = world.bodies[other].x_m;
@@ -156,21 +176,17 @@ std::uint64_t TetHashDetector::hash_tets(const World& world, const CollisionPair
 }
 
 void TetHashDetector::reach_of_queries(const World& world, const CollisionPairs& pairs) {
-  const std::size_t n = world.bodies.size();
-  std::vector<BoxUnion> vertices(n);  // each body's vertex box, for the bodies that query
-  for (std::size_t o = 0; o < n; ++o) {
-    if (!pairs.has_partner(o)) continue;
-    for (const Vec3& p : world.bodies[o].x_m) vertices[o].add_box(p, p);
-  }
-  m_query_reach.assign(n, BoxUnion{});
-  for (std::size_t b = 0; b < n; ++b) {
-    if (pairs.enabled(b, b)) {  // its own vertices query it: poisoned, so misses() nothing
+  // Every body that queries b's tets has a partner, so is walked: the other
+  // walked bodies' vertex boxes hold every query point (more than b's
+  // enabled partners', which only skips fewer tets).
+  std::vector<BoxUnion> vertices(world.bodies.size());
+  for (std::size_t o = 0; o < vertices.size(); ++o)
+    if (walked(world, pairs, o, false))
+      for (const Vec3& p : world.bodies[o].x_m) vertices[o].add_box(p, p);
+  m_query_reach = unions_of_others(world, pairs, vertices);
+  for (std::size_t b = 0; b < vertices.size(); ++b)
+    if (pairs.enabled(b, b))  // its own vertices query it too: poisoned, so misses() nothing
       m_query_reach[b].probe = std::numeric_limits<double>::quiet_NaN();
-      continue;
-    }
-    for (std::size_t o = 0; o < n; ++o)
-      if (o != b && pairs.enabled(o, b)) m_query_reach[b].add_union(vertices[o]);
-  }
 }
 
 void TetHashDetector::begin_hash() {
@@ -324,21 +340,7 @@ std::uint64_t TetHashDetector::refresh_tets(const World& world, const CollisionP
 }
 
 void TetHashDetector::finish_body_boxes(const World& world, const CollisionPairs& pairs) {
-  // Unions of the walked bodies after b (suffix) and before b (prefix):
-  // every body's partner box in two passes, not one a pair.
-  const std::size_t n = world.bodies.size();
-  std::vector<BoxUnion> after(n + 1);
-  for (std::size_t b = n; b-- > 0;) {
-    after[b] = after[b + 1];
-    if (walked(world, pairs, b, false)) after[b].add_union(m_body_boxes[b]);
-  }
-  BoxUnion before;
-  for (std::size_t b = 0; b < n; ++b) {
-    BoxUnion others = before;
-    others.add_union(after[b + 1]);
-    m_partner_boxes[b] = others;
-    if (walked(world, pairs, b, false)) before.add_union(m_body_boxes[b]);
-  }
+  m_partner_boxes = unions_of_others(world, pairs, m_body_boxes);
   m_partner_boxes_ready = true;
 }
 

@@ -78,10 +78,11 @@ class TetHashDetector {
   /// in one call) and unwidened (margin_m <= 0). Then, unless refreshing is
   /// enabled (a refresh keeps the table for later positions), a tet whose
   /// box lies strictly apart from the box around every vertex of the bodies
-  /// that query it (no self-collision in its body) is not entered: no query
-  /// point can pass its box test, so every query finds and is charged
-  /// exactly what it would with the tet entered (a widened query could pass
-  /// its grown box and be charged it: hence unwidened). Its cells are still
+  /// that may query it (every other walked body; no self-collision in its
+  /// body) is not entered: no query point can pass its box test, so every
+  /// query finds and is charged exactly what it would with the tet entered
+  /// (a widened query could pass its grown box and be charged it: hence
+  /// unwidened). Its cells are still
   /// charged (work units unchanged), its HashOverflow thrown as the insert
   /// would (the same cell count, checked), its box stored and in its body's
   /// union. Only the table is smaller (memory_bytes() may be too). The
@@ -199,9 +200,10 @@ class TetHashDetector {
   std::vector<BoxUnion> m_body_boxes;
   std::vector<BoxUnion> m_partner_boxes;
   bool m_partner_boxes_ready = false;
-  /// Per body, the box around the vertices of the bodies that query its tets
-  /// (poisoned with self-collision): hash_tets() leaves out a tet strictly
-  /// apart from it when its caller queries at the hash's positions only.
+  /// Per body, the box around the vertices of the other bodies the hash
+  /// walks, so of every body that queries its tets (poisoned with
+  /// self-collision): hash_tets() leaves out a tet strictly apart from it
+  /// when its caller queries at the hash's positions only.
   std::vector<BoxUnion> m_query_reach;
   void reach_of_queries(const World& world, const CollisionPairs& pairs);
   /// Makes m_partner_boxes from m_body_boxes after a complete hash or refresh.

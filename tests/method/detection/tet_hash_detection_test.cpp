@@ -487,7 +487,7 @@ TEST_CASE("a hash made for queries at its own positions leaves out the tets no q
           "finds and is charged what it would with them in",
           "[detection][threads]") {
   // hash_tets(..., queries_at_these_positions = true) skips a tet strictly
-  // apart from the box around its querying bodies' vertices. Every vertex's
+  // apart from the box around the other walked bodies' vertices. Every vertex's
   // query must give the same contact and work as with the full table, the
   // hash the same work, on 0 to 2 threads; the table must hold fewer entries
   // where bodies stand apart (or the test checks nothing), and nothing may be
