@@ -25,7 +25,7 @@ std::uint64_t next_prime(std::uint64_t n) {
 
 SpatialHash::SpatialHash(double cell_size_m, std::size_t table_size, HashFunction function)
     : m_cell_size(cell_size_m), m_inverse_cell(1.0 / cell_size_m), m_function(function),
-      m_buckets(std::max<std::size_t>(table_size, 1)), m_modulo(m_buckets.size()) {
+      m_buckets(std::max<std::size_t>(table_size, 1)), m_hash_buckets(m_buckets.size()), m_modulo(m_hash_buckets) {
   // A subnormal size has an infinite inverse: cell_of(0) would be 0 x inf,
   // a NaN cast to an integer (undefined).
   if (!(cell_size_m > 0.0) || !std::isfinite(cell_size_m) || !std::isfinite(m_inverse_cell))
@@ -40,6 +40,28 @@ void SpatialHash::begin_epoch() {
   }
   m_entries.clear();
   m_built_in_parts = false;
+  m_dense = false;
+}
+
+bool SpatialHash::begin_epoch_dense(const Vec3& lo, const Vec3& hi, std::size_t max_cells) {
+  begin_epoch();
+  if (!lo.allFinite() || !hi.allFinite() || (lo.array() > hi.array()).any()) return false;
+  const std::int64_t first[3] = {cell_of(lo.x()), cell_of(lo.y()), cell_of(lo.z())};
+  const std::int64_t last[3] = {cell_of(hi.x()), cell_of(hi.y()), cell_of(hi.z())};
+  double cells = 1.0;
+  for (int a = 0; a < 3; ++a) cells *= static_cast<double>(last[a] - first[a] + 1);
+  // Bucket indices are 32-bit (Entry::bucket).
+  if (cells > static_cast<double>(max_cells) || cells > static_cast<double>(UINT32_MAX)) return false;
+  m_grid = CellRange{first[0], last[0], first[1], last[1], first[2], last[2]};
+  for (int a = 0; a < 3; ++a) m_grid_n[a] = static_cast<std::uint64_t>(last[a] - first[a] + 1);
+  // New buckets carry stamp 0, older than every epoch: empty.
+  if (m_buckets.size() < static_cast<std::size_t>(cells)) m_buckets.resize(static_cast<std::size_t>(cells));
+  m_dense = true;
+  return true;
+}
+
+void SpatialHash::throw_outside_grid() {
+  throw std::logic_error("SpatialHash: a box inserted into a dense grid reaches a cell outside its range");
 }
 
 void SpatialHash::check_box(std::int64_t ni, std::int64_t nj, std::int64_t nk) const {
@@ -56,7 +78,7 @@ double SpatialHash::cells_of_box(const Vec3& lo, const Vec3& hi) const {
 }
 
 std::size_t SpatialHash::insert_box(const Vec3& lo, const Vec3& hi, std::uint32_t item) {
-  return buckets_of_box(lo, hi, [&](std::uint32_t b) {
+  return buckets_of_box<true>(lo, hi, [&](std::uint32_t b) {
     m_entries.push_back({item, b});
     count_entry(b);
   });

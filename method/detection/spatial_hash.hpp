@@ -25,6 +25,20 @@
 /// exact tests and de-duplicate. A bucket lists its entries in insertion order
 /// (every build is a stable sort), so a caller that inserts ascending ids
 /// gets every bucket sorted, and may search it.
+/// A dense grid in place of the hash (begin_epoch_dense()): for a table whose
+/// boxes all lie in a box known before the first insert, each cell of that
+/// box's cell range gets a bucket of its own, numbered along k, then j, then
+/// i (no hash, no modulo, no two cells in one bucket; neighbouring cells'
+/// buckets side by side). A point outside the range has an empty bucket.
+/// Every bucket then lists exactly the items of its cell, in insertion
+/// order: the entries of the point's own bucket that pass a caller's box
+/// test are the hash's, in the hash's order (a box holding p covers p's
+/// cell, so it is in p's bucket either way; a colliding cell's items differ
+/// only by failing that test). What differs is only where a bucket lists
+/// items of other cells: a search over several buckets meets those in
+/// another order, so a caller whose work counts the order of a multi-cell
+/// search keeps the hash (design notes: a dense grid over the tets' cell
+/// range measured about 30 % faster than hashing).
 /// Contract: coordinates must be finite; cell indices are clamped to +-2^50,
 /// far beyond any scene (positions are in metres). A box covering more than
 /// kMaxCellsPerBox cells throws HashOverflow instead of exhausting memory:
@@ -101,8 +115,18 @@ class SpatialHash {
   SpatialHash() = default;
   SpatialHash(double cell_size_m, std::size_t table_size, HashFunction function);
 
-  /// Empties the table in O(1).
+  /// Empties the table in O(1); the table hashes.
   void begin_epoch();
+  /// Empties the table and makes it a dense grid over the cells of box
+  /// [lo, hi] (file comment), if that range has at most max_cells cells
+  /// (and its coordinates are finite); returns whether it did. Otherwise
+  /// the table hashes, as after begin_epoch(). Every box inserted until the
+  /// next epoch must lie in [lo, hi] (a box reaching a cell outside the
+  /// range throws std::logic_error: its entries would be lost). The
+  /// buckets grow to the range's cell count (12 bytes a cell) and are kept.
+  bool begin_epoch_dense(const Vec3& lo, const Vec3& hi, std::size_t max_cells);
+  /// Whether this epoch's table is a dense grid.
+  bool dense() const { return m_dense; }
   /// Inserts item into every cell its box [lo, hi] overlaps; returns the
   /// number of cells (each a unit of work).
   std::size_t insert_box(const Vec3& lo, const Vec3& hi, std::uint32_t item);
@@ -154,7 +178,8 @@ class SpatialHash {
   /// Calls f(item) for every entry of the bucket of point p's cell.
   template <typename F>
   void for_each_in_cell(const Vec3& p, F&& f) const {
-    for_each_in_bucket(bucket_of(cell_of(p.x()), cell_of(p.y()), cell_of(p.z())), f);
+    const Entries entries = cell_entries(p);
+    for (const std::uint32_t* it = entries.first; it != entries.last; ++it) f(*it);
   }
   /// The entries of the bucket of point p's cell, [first, last): what
   /// for_each_in_cell() visits, as a range a caller loops over itself (its
@@ -164,7 +189,15 @@ class SpatialHash {
     const std::uint32_t* last;
   };
   Entries cell_entries(const Vec3& p) const {
-    return bucket_entries(bucket_of(cell_of(p.x()), cell_of(p.y()), cell_of(p.z())));
+    const std::int64_t i = cell_of(p.x()), j = cell_of(p.y()), k = cell_of(p.z());
+    if (m_dense) {
+      // Unsigned: a cell below the range wraps above it.
+      const auto di = static_cast<std::uint64_t>(i - m_grid.i0), dj = static_cast<std::uint64_t>(j - m_grid.j0),
+                 dk = static_cast<std::uint64_t>(k - m_grid.k0);
+      if (di >= m_grid_n[0] || dj >= m_grid_n[1] || dk >= m_grid_n[2]) return {nullptr, nullptr};
+      return bucket_entries(static_cast<std::size_t>((di * m_grid_n[1] + dj) * m_grid_n[2] + dk));
+    }
+    return bucket_entries(bucket_of(i, j, k));
   }
   /// Calls f(first, last) with the entries of every bucket of the cells box
   /// [lo, hi] overlaps (a bucket once a cell, so possibly repeatedly), each
@@ -211,7 +244,9 @@ class SpatialHash {
     const auto t = static_cast<std::int64_t>(y);
     return t - static_cast<std::int64_t>(static_cast<double>(t) > y);  // no branch: signs mix near the origin
   }
-  std::size_t table_size() const { return m_buckets.size(); }
+  /// The hash's bucket count (the constructor's table_size): what a table
+  /// made to match this one takes, whichever form this epoch's has.
+  std::size_t table_size() const { return m_hash_buckets; }
   std::size_t entry_count() const { return m_built_in_parts ? m_sorted.size() : m_entries.size(); }
   /// Buckets holding at least one entry in the current epoch.
   std::size_t occupied_buckets() const;
@@ -227,9 +262,16 @@ class SpatialHash {
   /// Calls sink(bucket) for each cell box [lo, hi] overlaps, in insertion
   /// order, without touching the table; returns the number of cells. Safe to
   /// call concurrently.
-  template <typename Sink>
+  /// Inserting: the box must lie in a dense grid's range (std::logic_error
+  /// otherwise); else the cells outside the range (empty buckets) are
+  /// counted but not passed to sink.
+  template <bool inserting = false, typename Sink>
   std::size_t buckets_of_box(const Vec3& lo, const Vec3& hi, Sink&& sink) const {
     const CellRange r = cell_range(lo, hi);
+    if (m_dense) {
+      dense_buckets_of_cells<inserting>(r, sink);
+      return r.cells();
+    }
     if (m_function == HashFunction::Paper)
       buckets_of_cells<HashFunction::Paper>(r.i0, r.i1, r.j0, r.j1, r.k0, r.k1, sink);
     else
@@ -263,6 +305,28 @@ class SpatialHash {
         for (std::int64_t k = k0; k <= k1; ++k, k_part += H::kK)
           sink(static_cast<std::uint32_t>(modulo(H::finish(ij, k_part))));
       }
+  }
+  /// buckets_of_box()'s loop for a dense grid: the range clipped to the grid
+  /// (or, inserting, checked to lie in it).
+  template <bool inserting, typename Sink>
+  void dense_buckets_of_cells(const CellRange& r, Sink& sink) const {
+    const CellRange& g = m_grid;
+    const CellRange c{std::max(r.i0, g.i0), std::min(r.i1, g.i1), std::max(r.j0, g.j0),
+                      std::min(r.j1, g.j1), std::max(r.k0, g.k0), std::min(r.k1, g.k1)};
+    if constexpr (inserting)
+      if (c.i0 != r.i0 || c.i1 != r.i1 || c.j0 != r.j0 || c.j1 != r.j1 || c.k0 != r.k0 || c.k1 != r.k1)
+        throw_outside_grid();
+    const auto nj = static_cast<std::int64_t>(m_grid_n[1]), nk = static_cast<std::int64_t>(m_grid_n[2]);
+    for (std::int64_t i = c.i0; i <= c.i1; ++i)
+      for (std::int64_t j = c.j0; j <= c.j1; ++j) {
+        const std::int64_t row = ((i - g.i0) * nj + (j - g.j0)) * nk - g.k0;
+        for (std::int64_t k = c.k0; k <= c.k1; ++k) sink(static_cast<std::uint32_t>(row + k));
+      }
+  }
+  [[noreturn]] static void throw_outside_grid();
+  /// Buckets in use this epoch: the grid's cells, or the hash's buckets.
+  std::size_t active_buckets() const {
+    return m_dense ? static_cast<std::size_t>(m_grid_n[0] * m_grid_n[1] * m_grid_n[2]) : m_hash_buckets;
   }
   /// Counts one more entry in bucket b (emptying it first if its stamp is
   /// stale); returns whether this was its first entry of the epoch.
@@ -314,7 +378,11 @@ class SpatialHash {
     std::uint32_t start = 0;  ///< first entry in m_sorted (after build)
   };
   std::vector<Bucket> m_buckets;
-  FastModulo m_modulo;  ///< modulo m_buckets.size()
+  std::size_t m_hash_buckets = 1;  ///< the hash's bucket count (m_buckets may be larger: a grid's)
+  FastModulo m_modulo;  ///< modulo m_hash_buckets
+  bool m_dense = false;  ///< this epoch's table is a dense grid over m_grid
+  CellRange m_grid{0, 0, 0, 0, 0, 0};
+  std::uint64_t m_grid_n[3] = {1, 1, 1};  ///< the grid's cells along i, j, k
   std::uint32_t m_epoch = 1;
   std::vector<Entry> m_entries;   // in insertion order
   std::vector<std::uint32_t> m_sorted;  // items grouped by bucket (after build)
@@ -348,7 +416,7 @@ std::size_t SpatialHash::insert_all_and_build(std::size_t n, BoxOf&& box_of, Wor
   // smaller on several threads as below.
   int shift = 0;
   while (shift < 40 && (std::size_t(2) << shift) <= buckets_per_owner) ++shift;  // 2^40 buckets: beyond any table
-  const auto owners_of = [&](int s) { return (m_buckets.size() + (std::size_t(1) << s) - 1) >> s; };
+  const auto owners_of = [&](int s) { return (active_buckets() + (std::size_t(1) << s) - 1) >> s; };
   // On several threads, at least kOwnersPerThread owners a thread (where the
   // table has that many buckets), which the build hands out as threads come
   // free: a few large owners split unevenly (9 on the dog pair: 5 and 4).
@@ -373,7 +441,7 @@ std::size_t SpatialHash::insert_all_and_build(std::size_t n, BoxOf&& box_of, Wor
       } else {
         if (!box_of(i, lo, hi, item)) continue;
       }
-      count += buckets_of_box(lo, hi, [&](std::uint32_t b) { lists[owner_of(b, owner_shift)].push_back({item, b}); });
+      count += buckets_of_box<true>(lo, hi, [&](std::uint32_t b) { lists[owner_of(b, owner_shift)].push_back({item, b}); });
     }
     cells[p] = count;
   });

@@ -1,8 +1,10 @@
 #include "method/detection/tet_hash_detection.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <optional>
+#include <stdexcept>
 
 #include "method/geometry/perturbed_predicates.hpp"
 #include "method/handler/heap_bytes.hpp"
@@ -136,7 +138,23 @@ std::uint64_t TetHashDetector::hash_tets(const World& world, const CollisionPair
   // of its partners), when the table serves these positions only; a body
   // with self-collision, or without that promise, has none (nothing skipped).
   const bool skip = queries_at_these_positions && m_hashed_cells.empty();
-  if (skip) reach_of_queries(world, pairs);
+  // A dense grid over the walked bodies' vertices (which hold every stored
+  // box) where only single-cell queries of this table are made.
+  const bool dense = m_hashed_cells.empty() && !m_widening;
+  if (skip || dense) {
+    std::vector<BoxUnion> vertices(world.bodies.size());
+    BoxUnion all;
+    for (std::size_t o = 0; o < vertices.size(); ++o)
+      if (walked(world, pairs, o, false)) {
+        for (const Vec3& p : world.bodies[o].x_m) vertices[o].add_box(p, p);
+        all.add_union(vertices[o]);
+      }
+    if (skip) reach_of_queries(world, pairs, vertices);
+    // (Not with a NaN or infinite coordinate: min and max may pass over a
+    // NaN, the probe does not. The hash then meets it as it always has.)
+    if (dense && std::isfinite(all.probe))
+      m_hash.begin_epoch_dense(all.lo, all.hi, kDenseCellsPerBucket * m_hash.table_size());
+  }
   // Without a pool the owners' build runs on this thread: its random accesses
   // stay in a core's cache, where insert_box() and build() reach across the
   // whole table for every entry (spatial_hash.hpp).
@@ -175,14 +193,11 @@ std::uint64_t TetHashDetector::hash_tets(const World& world, const CollisionPair
   return work::kCellInsert * cells;
 }
 
-void TetHashDetector::reach_of_queries(const World& world, const CollisionPairs& pairs) {
+void TetHashDetector::reach_of_queries(const World& world, const CollisionPairs& pairs,
+                                       const std::vector<BoxUnion>& vertices) {
   // Every body that queries b's tets has a partner, so is walked: the other
   // walked bodies' vertex boxes hold every query point (more than b's
   // enabled partners', which only skips fewer tets).
-  std::vector<BoxUnion> vertices(world.bodies.size());
-  for (std::size_t o = 0; o < vertices.size(); ++o)
-    if (walked(world, pairs, o, false))
-      for (const Vec3& p : world.bodies[o].x_m) vertices[o].add_box(p, p);
   m_query_reach = unions_of_others(world, pairs, vertices);
   for (std::size_t b = 0; b < vertices.size(); ++b)
     if (pairs.enabled(b, b))  // its own vertices query it too: poisoned, so misses() nothing
@@ -369,6 +384,8 @@ std::optional<Contact> TetHashDetector::query_point(const World& world, const Co
   const std::uint32_t own_count =
       pairs.enabled(object, object) ? 0 : static_cast<std::uint32_t>(world.bodies[object].mesh->tet_count());
   const Vec3 grow = Vec3::Constant(margin_m);
+  if (margin_m > 0.0 && m_hash.dense())
+    throw std::logic_error("TetHashDetector: a widened query needs enable_widening() before the hash");
   // Outside every other hashed body's box union grown by the margin, each
   // tet of every bucket searched would fail its (grown) box test: no
   // contact, and the work of a query that searched its cells, counted

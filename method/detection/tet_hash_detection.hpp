@@ -5,7 +5,9 @@
 ///      collision partner goes into all cells its AABB covers (the paper: one
 ///      task, not interruptible; the AABBs are kept for step 2; for a caller
 ///      that queries at once, unwidened, the tets no query point can reach
-///      are charged but left out: see hash_tets()). Resumable in
+///      are charged but left out: see hash_tets(); unless widened or
+///      refreshed queries may follow, the table is a dense grid over the
+///      walked vertices' cells: see enable_widening()). Resumable in
 ///      pieces: begin_hash(), hash_some_tets() until done, then the table's
 ///      begin_build()/build_some() (hash()); the result is hash_tets()'s
 ///      whenever positions do not change in between. Tets hashed in an earlier
@@ -100,6 +102,18 @@ class TetHashDetector {
   /// Makes refreshing possible: from the next hash on, every tet's cells are
   /// kept (48 bytes a tet) and the overflow table is allocated.
   void enable_refresh();
+  /// Makes widened queries (margin_m > 0) possible from the next hash on.
+  /// Without this or enable_refresh(), hash_tets() lays the table out as a
+  /// dense grid over the cells of the walked bodies' vertices where that
+  /// range has at most kDenseCellsPerBucket cells a hash bucket
+  /// (spatial_hash.hpp): a query of the point's cell then meets the tets
+  /// that pass its box test in the hash's order (the same answers and work,
+  /// cheaper to build and read), but a search over several cells, or over
+  /// the main table and an overflow with one best-so-far, would meet them
+  /// in another order than the hash and could be charged differently; so
+  /// a widened query on a dense table throws std::logic_error.
+  void enable_widening() { m_widening = true; }
+  static constexpr std::size_t kDenseCellsPerBucket = 4;
   /// Stage 1b in pieces (see above): begin_refresh() empties the overflow;
   /// each refresh_some_tets() revisits the next `max_tets` tets (hash order;
   /// tets of bodies that cannot move are skipped uncharged) and returns their
@@ -205,7 +219,8 @@ class TetHashDetector {
   /// self-collision): hash_tets() leaves out a tet strictly apart from it
   /// when its caller queries at the hash's positions only.
   std::vector<BoxUnion> m_query_reach;
-  void reach_of_queries(const World& world, const CollisionPairs& pairs);
+  void reach_of_queries(const World& world, const CollisionPairs& pairs, const std::vector<BoxUnion>& vertices);
+  bool m_widening = false;                            // enable_widening(): the table always hashes
   /// Makes m_partner_boxes from m_body_boxes after a complete hash or refresh.
   void finish_body_boxes(const World& world, const CollisionPairs& pairs);
   QueryScratch m_scratch;                             // the single-threaded queries'

@@ -25,6 +25,7 @@ CollisionCycle::CollisionCycle(const World& world, CollisionSettings settings, D
       m_detector(world, m_settings.detection),
       m_surface(world, m_settings.detection.cell_size_m, m_settings.detection.hash) {
   if (m_rehash_stale || m_keep_table) m_detector.enable_refresh();
+  if (m_widen_stale) m_detector.enable_widening();
   if (mode == DetectionMode::SpatialHash) warm_up(world);
   if (m_settings.threads > 1 && mode == DetectionMode::SpatialHash) {
     m_pool = std::make_unique<WorkerPool>(m_settings.threads);

@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <random>
 #include <set>
@@ -412,4 +413,146 @@ TEST_CASE("spatial hash: the parallel insert refuses the first oversized box, as
     return true;
   };
   CHECK_THROWS_WITH(parallel.insert_all_and_build(boxes.size(), box_of, pool), serial_message);
+}
+
+TEST_CASE("spatial hash: a dense grid lists exactly each cell's items in insertion order, however it is built, "
+          "and nothing outside its range",
+          "[hash][dense][threads]") {
+  // Expected buckets counted independently: for every cell of the grid's
+  // range and a shell of one cell around it, the items whose box's cell
+  // range (floor of the coordinates in cells) holds the cell, in insertion
+  // order (items inserted in a shuffled order). Built one by one, in pieces
+  // of 7 visits, and at once on 1 to 3 threads with owners of 16384 and of
+  // 4 buckets; over several epochs of one table, alternating dense grids of
+  // two sizes with the hash, so stale stamps and grown buckets are met.
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), size(0.0, 0.6);
+  const double cell = 0.25;
+  std::vector<std::uint32_t> order(300);
+  for (std::uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::shuffle(order.begin(), order.end(), rng);
+  Boxes boxes;  // in insertion order; item order[i] has box i
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const Vec3 lo(u(rng), u(rng), u(rng));
+    boxes.emplace_back(lo, lo + Vec3(size(rng), size(rng), size(rng)));
+  }
+  // Two grids holding every box: the boxes' exact extent (its cells) and a
+  // wider one.
+  Vec3 extent_lo = boxes[0].first, extent_hi = boxes[0].second;
+  for (const auto& [lo, hi] : boxes) extent_lo = extent_lo.cwiseMin(lo), extent_hi = extent_hi.cwiseMax(hi);
+  const std::pair<Vec3, Vec3> grids[] = {{extent_lo, extent_hi}, {extent_lo - Vec3(1.1, 0.3, 2.0), extent_hi + Vec3(0.6, 1.7, 0.2)}};
+  const auto floor_cell = [&](double x) { return static_cast<std::int64_t>(std::floor(x * (1.0 / cell))); };
+  const auto check_grid = [&](const SpatialHash& table, const std::pair<Vec3, Vec3>& grid) {
+    REQUIRE(table.dense());
+    std::int64_t first[3], last[3];
+    for (int a = 0; a < 3; ++a) first[a] = floor_cell(grid.first[a]) - 1, last[a] = floor_cell(grid.second[a]) + 1;
+    std::size_t entries = 0, cells_outside = 0;
+    for (std::int64_t i = first[0]; i <= last[0]; ++i)
+      for (std::int64_t j = first[1]; j <= last[1]; ++j)
+        for (std::int64_t k = first[2]; k <= last[2]; ++k) {
+          const bool outside = i == first[0] || i == last[0] || j == first[1] || j == last[1] || k == first[2] || k == last[2];
+          std::vector<std::uint32_t> want;
+          for (std::size_t n = 0; n < boxes.size(); ++n) {
+            const auto& [lo, hi] = boxes[n];
+            if (floor_cell(lo.x()) <= i && i <= floor_cell(hi.x()) && floor_cell(lo.y()) <= j && j <= floor_cell(hi.y()) &&
+                floor_cell(lo.z()) <= k && k <= floor_cell(hi.z()))
+              want.push_back(order[n]);
+          }
+          const Vec3 centre = cell * Vec3(double(i) + 0.5, double(j) + 0.5, double(k) + 0.5);
+          const SpatialHash::Entries got = table.cell_entries(centre);
+          INFO("cell " << i << " " << j << " " << k);
+          REQUIRE(std::vector<std::uint32_t>(got.first, got.last) == want);
+          entries += want.size();
+          cells_outside += outside;
+          if (outside) REQUIRE(got.first == got.last);
+        }
+    CHECK(entries == table.entry_count());  // no cell lists another cell's items
+    CHECK(cells_outside > 0);
+  };
+  std::size_t expected_cells = 0;
+  for (const auto& [lo, hi] : boxes) expected_cells += static_cast<std::size_t>(SpatialHash(cell, 1, HashFunction::Mixed).cells_of_box(lo, hi));
+  for (const int way : {0, 1, 2, 3, 4}) {  // one by one, in pieces, at once on 1..3 threads
+    INFO("way " << way);
+    SpatialHash table(cell, 31, HashFunction::Mixed);
+    for (int epoch = 0; epoch < 5; ++epoch) {
+      INFO("epoch " << epoch);
+      if (epoch == 2) {  // a hashed epoch between two dense ones
+        table.begin_epoch();
+        CHECK_FALSE(table.dense());
+        for (std::size_t n = 0; n < boxes.size(); ++n) table.insert_box(boxes[n].first, boxes[n].second, order[n]);
+        table.build();
+        continue;
+      }
+      const auto& grid = grids[epoch % 2];
+      REQUIRE(table.begin_epoch_dense(grid.first, grid.second, 100000));
+      std::size_t cells = 0;
+      if (way <= 1) {
+        for (std::size_t n = 0; n < boxes.size(); ++n) cells += table.insert_box(boxes[n].first, boxes[n].second, order[n]);
+        table.begin_build();
+        while (!table.build_some(way == 0 ? std::numeric_limits<std::size_t>::max() : 7)) {}
+      } else {
+        WorkerPool pool(way - 1);
+        cells = table.insert_all_and_build(
+            boxes.size(),
+            [&](std::size_t n, Vec3& lo, Vec3& hi, std::uint32_t& item) {
+              lo = boxes[n].first, hi = boxes[n].second, item = order[n];
+              return true;
+            },
+            pool, epoch == 3 ? std::size_t(4) : SpatialHash::kBucketsPerOwner);
+      }
+      CHECK(cells == expected_cells);
+      check_grid(table, grid);
+    }
+  }
+}
+
+TEST_CASE("spatial hash: a dense grid too large or not finite is refused and the table hashes; a box outside the "
+          "grid is refused; a search reaching outside counts every cell and visits the inside ones",
+          "[hash][dense]") {
+  SpatialHash table(0.5, 31, HashFunction::Mixed);
+  // [0, 2]^3 spans cells 0..4 on each axis: 125 cells.
+  CHECK(table.begin_epoch_dense(Vec3(0, 0, 0), Vec3(2, 2, 2), 125));
+  CHECK(table.dense());
+  CHECK(table.table_size() == 31);  // the hash's size, which an overflow made to match takes
+  CHECK_FALSE(table.begin_epoch_dense(Vec3(0, 0, 0), Vec3(2, 2, 2), 124));
+  CHECK_FALSE(table.dense());
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  CHECK_FALSE(table.begin_epoch_dense(Vec3(0, nan, 0), Vec3(2, 2, 2), 1000));
+  CHECK_FALSE(table.begin_epoch_dense(Vec3(0, 0, 0), Vec3(2, 2, inf), 1000));
+  CHECK_FALSE(table.begin_epoch_dense(Vec3(0, 0, 0), Vec3(2, -1, 2), 1000));  // an empty box
+  CHECK_FALSE(table.dense());
+  // Refused: the table hashes, and takes a box anywhere.
+  CHECK(table.insert_box(Vec3(5, 5, 5), Vec3(5.1, 5.1, 5.1), 7) == 1);
+  table.build();
+  std::vector<std::uint32_t> seen;
+  table.for_each_in_cell(Vec3(5.05, 5.05, 5.05), [&](std::uint32_t id) { seen.push_back(id); });
+  CHECK(seen == std::vector<std::uint32_t>{7});
+
+  REQUIRE(table.begin_epoch_dense(Vec3(0, 0, 0), Vec3(2, 2, 2), 125));
+  CHECK_THROWS_AS(table.insert_box(Vec3(1, 1, 1), Vec3(1.2, 2.6, 1.2), 1), std::logic_error);
+  CHECK_THROWS_AS(table.insert_box(Vec3(-0.1, 1, 1), Vec3(1, 1, 1), 1), std::logic_error);
+  REQUIRE(table.begin_epoch_dense(Vec3(0, 0, 0), Vec3(2, 2, 2), 125));
+  WorkerPool pool(2);
+  const auto outside = [](std::size_t n, Vec3& lo, Vec3& hi, std::uint32_t& item) {
+    lo = Vec3(0.1, 0.1, 0.1) * double(n), hi = lo, item = static_cast<std::uint32_t>(n);  // n = 25: x = 2.5, cell 5
+    return true;
+  };
+  CHECK_THROWS_AS(table.insert_all_and_build(26, outside, pool), std::logic_error);
+
+  REQUIRE(table.begin_epoch_dense(Vec3(0, 0, 0), Vec3(2, 2, 2), 125));
+  table.insert_box(Vec3(0, 0, 0), Vec3(2, 2, 2), 3);  // every cell
+  table.build();
+  // From cell -2 to 1 on x, 0 on y and z: 4 cells counted, 2 inside.
+  std::size_t ranges = 0;
+  CHECK(table.for_each_range_in_box(Vec3(-0.9, 0.1, 0.1), Vec3(0.6, 0.1, 0.1), [&](const std::uint32_t* first, const std::uint32_t* last) {
+    CHECK(last - first == 1);
+    CHECK(*first == 3);
+    ++ranges;
+  }) == 4);
+  CHECK(ranges == 2);
+  CHECK(table.cells_visited(Vec3(-0.9, 0.1, 0.1), Vec3(0.6, 0.1, 0.1)) == 4);
+  const SpatialHash::Entries below = table.cell_entries(Vec3(-0.1, 1, 1));
+  const SpatialHash::Entries above = table.cell_entries(Vec3(1, 1, 2.5));
+  CHECK(below.first == below.last);
+  CHECK(above.first == above.last);
 }

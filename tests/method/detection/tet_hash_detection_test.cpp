@@ -14,6 +14,7 @@
 #include <limits>
 #include <optional>
 #include <set>
+#include <stdexcept>
 #include <tuple>
 
 #include "method/geometry/perturbed_predicates.hpp"
@@ -532,4 +533,66 @@ TEST_CASE("a hash made for queries at its own positions leaves out the tets no q
       CHECK(refreshing.hash().entry_count() == full.hash().entry_count());
     }
   CHECK(some_skipped);
+}
+
+TEST_CASE("a dense grid in place of the hash answers and charges every query, and the hash, as the hashed table; "
+          "a table that may be widened or refreshed keeps the hash",
+          "[detection][dense][threads]") {
+  // Without enable_widening() or enable_refresh(), hash_tets() lays the
+  // table out as a dense grid (where its range is small enough: every test
+  // scene's is). Each vertex's query, before and after the bodies moved,
+  // must find and be charged what it is with the hashed table (a
+  // detector with enable_widening(), whose table hashes), and the hash's
+  // work must be the same, with and without the skip of unreachable tets,
+  // on 0 to 2 threads. A widened query of a dense table is refused.
+  for (const auto& [name, scene] : test::collision_scenes())
+    for (const double shift_cells : {0.0, 0.45, 3.0}) {
+      INFO(name << ", shift " << shift_cells << " cells");
+      World world = build_world(scene);
+      const CollisionPairs pairs(world);
+      const DetectionSettings settings = test::settings_of(world, scene).detection;
+      move_bodies(world, settings.cell_size_m, shift_cells, 0.2 * shift_cells);
+      std::vector<std::vector<Vec3>> at_hash;  // the positions both tables are hashed at
+      for (const Body& b : world.bodies) at_hash.push_back(b.x_m);
+      for (const bool skip : {false, true}) {
+        for (std::size_t b = 0; b < world.bodies.size(); ++b) world.bodies[b].x_m = at_hash[b];
+        TetHashDetector hashed(world, settings);
+        hashed.enable_widening();
+        const std::uint64_t hashed_work = hashed.hash_tets(world, pairs, nullptr, skip);
+        REQUIRE_FALSE(hashed.hash().dense());
+        for (const int threads : {0, 1, 2}) {
+          INFO(threads << " threads, skip " << skip);
+          WorkerPool pool(std::max(threads, 1));
+          World& moved = world;
+          for (std::size_t b = 0; b < world.bodies.size(); ++b) world.bodies[b].x_m = at_hash[b];
+          TetHashDetector dense(moved, settings);
+          CHECK(dense.hash_tets(moved, pairs, threads > 0 ? &pool : nullptr, skip) == hashed_work);
+          REQUIRE(dense.hash().dense());
+          CHECK(dense.hash().entry_count() == hashed.hash().entry_count());
+          // At the hash's positions, then moved on (a cycle spanning steps
+          // queries its table later: unless skipping, which promises not).
+          for (const double later_cells : {0.0, 0.7}) {
+            if (skip && later_cells > 0.0) continue;
+            if (later_cells > 0.0) move_bodies(moved, settings.cell_size_m, later_cells, 0.3);
+            for (std::int32_t o = 0; o < static_cast<std::int32_t>(moved.bodies.size()); ++o)
+              for (std::int32_t v = 0; v < static_cast<std::int32_t>(moved.bodies[o].x_m.size()); ++v) {
+                std::uint64_t want_work = 0, got_work = 0;
+                const auto want = hashed.query_point(moved, pairs, o, v, want_work);
+                const auto got = dense.query_point(moved, pairs, o, v, got_work);
+                INFO("body " << o << ", vertex " << v << ", moved on " << later_cells);
+                CHECK(got_work == want_work);
+                REQUIRE(got.has_value() == want.has_value());
+                if (got) CHECK(std::tie(got->other, got->tet) == std::tie(want->other, want->tet));
+              }
+          }
+          std::uint64_t work = 0;
+          CHECK_THROWS_AS(dense.query_point(moved, pairs, 0, 0, work, 0.1 * settings.cell_size_m), std::logic_error);
+        }
+      }
+      for (std::size_t b = 0; b < world.bodies.size(); ++b) world.bodies[b].x_m = at_hash[b];
+      TetHashDetector refreshing(world, settings);
+      refreshing.enable_refresh();
+      refreshing.hash_tets(world, pairs);
+      CHECK_FALSE(refreshing.hash().dense());
+    }
 }
