@@ -6,7 +6,9 @@
 // long) against a copy translated by half its height along y, which puts 10 %
 // of the vertices inside the other dog (1,541 of 15,460).
 // bucket_share: distinct buckets / distinct cells the tets occupy (1 = no two
-// occupied cells share a bucket; lower = more hash collisions).
+// occupied cells share a bucket; lower = more hash collisions), in the hash
+// the `hash` argument names: what keep > 0 (keep_table) reads; keep 0's
+// table is a dense grid, one cell a bucket (TetHashDetector::enable_widening).
 // cells_per_tet: cells a tet's box covers, so hash entries a tet a cycle (fewer
 // are entered where a budgetless cycle leaves out tets no query point reaches).
 // BM_Plates20/<hash>/<threads>: the plates20 scene (15,360 tets, at the origin).

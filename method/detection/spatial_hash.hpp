@@ -191,9 +191,10 @@ class SpatialHash {
   Entries cell_entries(const Vec3& p) const {
     const std::int64_t i = cell_of(p.x()), j = cell_of(p.y()), k = cell_of(p.z());
     if (m_dense) {
-      // Unsigned: a cell below the range wraps above it.
-      const auto di = static_cast<std::uint64_t>(i - m_grid.i0), dj = static_cast<std::uint64_t>(j - m_grid.j0),
-                 dk = static_cast<std::uint64_t>(k - m_grid.k0);
+      // Unsigned (no signed overflow, whatever the index): a cell below the
+      // range wraps above it.
+      const auto u = [](std::int64_t x) { return static_cast<std::uint64_t>(x); };
+      const std::uint64_t di = u(i) - u(m_grid.i0), dj = u(j) - u(m_grid.j0), dk = u(k) - u(m_grid.k0);
       if (di >= m_grid_n[0] || dj >= m_grid_n[1] || dk >= m_grid_n[2]) return {nullptr, nullptr};
       return bucket_entries(static_cast<std::size_t>((di * m_grid_n[1] + dj) * m_grid_n[2] + dk));
     }

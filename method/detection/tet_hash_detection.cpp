@@ -153,7 +153,8 @@ std::uint64_t TetHashDetector::hash_tets(const World& world, const CollisionPair
     // (Not with a NaN or infinite coordinate: min and max may pass over a
     // NaN, the probe does not. The hash then meets it as it always has.)
     if (dense && std::isfinite(all.probe))
-      m_hash.begin_epoch_dense(all.lo, all.hi, kDenseCellsPerBucket * m_hash.table_size());
+      m_hash.begin_epoch_dense(all.lo, all.hi,
+                               std::min(kDenseCellsPerBucket * m_hash.table_size(), kDenseCellsPerTet * m_boxes.size()));
   }
   // Without a pool the owners' build runs on this thread: its random accesses
   // stay in a core's cache, where insert_box() and build() reach across the
@@ -384,7 +385,7 @@ std::optional<Contact> TetHashDetector::query_point(const World& world, const Co
   const std::uint32_t own_count =
       pairs.enabled(object, object) ? 0 : static_cast<std::uint32_t>(world.bodies[object].mesh->tet_count());
   const Vec3 grow = Vec3::Constant(margin_m);
-  if (margin_m > 0.0 && m_hash.dense())
+  if (!(margin_m <= 0.0) && m_hash.dense())
     throw std::logic_error("TetHashDetector: a widened query needs enable_widening() before the hash");
   // Outside every other hashed body's box union grown by the margin, each
   // tet of every bucket searched would fail its (grown) box test: no

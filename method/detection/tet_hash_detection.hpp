@@ -34,7 +34,8 @@
 ///      each table searched), without reading the table (half the dog
 ///      pair's vertices: 78 ns a query with the table, 7 without,
 ///      micro_peer_inside BM_QueryClasses/0/0; widened a quarter cell, 234
-///      and 20 ns, BM_QueryClasses/0/25). A NaN margin never rejects.
+///      and 20 ns, BM_QueryClasses/0/25; both measured on the hash, before
+///      the dense grid, which /0 now reads). A NaN margin never rejects.
 ///      Then the vertex is hashed; for each tet in its bucket:
 ///      skip pairs that are not enabled and tets incident to the vertex
 ///      (self-collision), reject by the stored AABB, then the exact perturbed
@@ -74,7 +75,9 @@ class TetHashDetector {
   /// Stage 1: hashes all tets at the current positions; returns work units.
   /// By SpatialHash::insert_all_and_build(), on the pool's threads or without
   /// one on the caller's: the same table, stored boxes, work units and errors
-  /// on any thread count, and as begin_hash(), hash_some_tets() and a build.
+  /// on any thread count, and as begin_hash(), hash_some_tets() and a build
+  /// (those always hash: where hash_tets() lays out a dense grid, only the
+  /// buckets differ, not what any query finds or is charged).
   /// `queries_at_these_positions`: the caller promises that every query of
   /// this table is made before any position changes (a cycle run to its end
   /// in one call) and unwidened (margin_m <= 0). Then, unless refreshing is
@@ -105,15 +108,18 @@ class TetHashDetector {
   /// Makes widened queries (margin_m > 0) possible from the next hash on.
   /// Without this or enable_refresh(), hash_tets() lays the table out as a
   /// dense grid over the cells of the walked bodies' vertices where that
-  /// range has at most kDenseCellsPerBucket cells a hash bucket
-  /// (spatial_hash.hpp): a query of the point's cell then meets the tets
-  /// that pass its box test in the hash's order (the same answers and work,
-  /// cheaper to build and read), but a search over several cells, or over
-  /// the main table and an overflow with one best-so-far, would meet them
-  /// in another order than the hash and could be charged differently; so
-  /// a widened query on a dense table throws std::logic_error.
+  /// range has at most kDenseCellsPerBucket cells a hash bucket and
+  /// kDenseCellsPerTet a tet (spatial_hash.hpp; 12 bytes a cell, the
+  /// buckets kept at their largest: at most 96 bytes a tet): a query of the
+  /// point's cell then meets the tets that pass its box test in the hash's
+  /// order (the same answers and work, cheaper to build and read), but a
+  /// search over several cells, or over the main table and an overflow with
+  /// one best-so-far, would meet them in another order than the hash and
+  /// could be charged differently; so a widened query (margin_m > 0, or
+  /// NaN) on a dense table throws std::logic_error.
   void enable_widening() { m_widening = true; }
   static constexpr std::size_t kDenseCellsPerBucket = 4;
+  static constexpr std::size_t kDenseCellsPerTet = 8;
   /// Stage 1b in pieces (see above): begin_refresh() empties the overflow;
   /// each refresh_some_tets() revisits the next `max_tets` tets (hash order;
   /// tets of bodies that cannot move are skipped uncharged) and returns their

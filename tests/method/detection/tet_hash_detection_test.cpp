@@ -563,8 +563,8 @@ TEST_CASE("a dense grid in place of the hash answers and charges every query, an
         for (const int threads : {0, 1, 2}) {
           INFO(threads << " threads, skip " << skip);
           WorkerPool pool(std::max(threads, 1));
-          World& moved = world;
           for (std::size_t b = 0; b < world.bodies.size(); ++b) world.bodies[b].x_m = at_hash[b];
+          World& moved = world;  // moved on below, reset here for each thread count
           TetHashDetector dense(moved, settings);
           CHECK(dense.hash_tets(moved, pairs, threads > 0 ? &pool : nullptr, skip) == hashed_work);
           REQUIRE(dense.hash().dense());
@@ -587,6 +587,8 @@ TEST_CASE("a dense grid in place of the hash answers and charges every query, an
           }
           std::uint64_t work = 0;
           CHECK_THROWS_AS(dense.query_point(moved, pairs, 0, 0, work, 0.1 * settings.cell_size_m), std::logic_error);
+          CHECK_THROWS_AS(dense.query_point(moved, pairs, 0, 0, work, std::numeric_limits<double>::quiet_NaN()),
+                          std::logic_error);
         }
       }
       for (std::size_t b = 0; b < world.bodies.size(); ++b) world.bodies[b].x_m = at_hash[b];
@@ -595,4 +597,30 @@ TEST_CASE("a dense grid in place of the hash answers and charges every query, an
       refreshing.hash_tets(world, pairs);
       CHECK_FALSE(refreshing.hash().dense());
     }
+}
+
+TEST_CASE("bodies far apart: a dense grid over them would be too large, so the table hashes, and answers and charges "
+          "as the hashed table",
+          "[detection][dense]") {
+  int refused = 0;
+  for (const auto& [name, scene] : test::collision_scenes()) {
+    INFO(name);
+    World world = build_world(scene);
+    const CollisionPairs pairs(world);
+    const DetectionSettings settings = test::settings_of(world, scene).detection;
+    // Movable bodies 5000 cells along a diagonal, alternately each way:
+    // between two bodies (or a body and a fixed one) some 10^11 cells.
+    move_bodies(world, settings.cell_size_m, 5000.0, 0.1);
+    TetHashDetector hashed(world, settings);
+    hashed.enable_widening();
+    TetHashDetector far(world, settings);
+    const std::uint64_t want_hash = hashed.hash_tets(world, pairs);
+    CHECK(far.hash_tets(world, pairs) == want_hash);
+    if (far.hash().dense()) continue;  // one body alone (a self-colliding scene): its grid is small
+    ++refused;
+    std::uint64_t want_work = 0, got_work = 0;
+    CHECK(query_all(world, pairs, &far, &got_work) == query_all(world, pairs, &hashed, &want_work));
+    CHECK(got_work == want_work);
+  }
+  CHECK(refused > 0);
 }
