@@ -304,6 +304,7 @@ BENCHMARK(BM_Plates20Moving)->Arg(0)->Arg(125)->Unit(benchmark::kMillisecond);
 struct SideBySide {
   double seconds[2] = {0.0, 0.0};
   StageCosts stages[2];
+  std::int64_t calls = 0;  ///< iterations run by loop()
 
   void run(CollisionCycle* cycles[2], World* worlds[2], std::int64_t call) {
     for (int k = 0; k < 2; ++k) {
@@ -317,6 +318,29 @@ struct SideBySide {
       for (std::size_t st = 0; st < kCostStages; ++st) stages[which].ms[st] += cycles[which]->step_costs().ms[st];
     }
   }
+  /// The benchmark's loop: each iteration, if `moves`, first calls
+  /// move(calls) untimed, then runs both cycles; stops with `mismatch` as
+  /// the error (returning false) once their contact counts differ.
+  template <typename Move>
+  bool loop(benchmark::State& state, CollisionCycle* cycles[2], World* worlds[2], bool moves, Move&& move,
+            const char* mismatch) {
+    for (auto _ : state) {
+      if (moves) {
+        state.PauseTiming();
+        move(calls);
+        state.ResumeTiming();
+      }
+      run(cycles, worlds, calls);
+      ++calls;
+      if (cycles[0]->contacts().size() != cycles[1]->contacts().size()) {
+        state.SkipWithError(mismatch);
+        return false;
+      }
+    }
+    return true;
+  }
+  /// Cycle k's mean time per call, ms.
+  double ms_per_call(int k) const { return 1e3 * seconds[k] / static_cast<double>(std::max<std::int64_t>(calls, 1)); }
   /// Counters <prefix><stage>: cycle num's stage time over cycle den's, for
   /// each stage den spent time in.
   void stage_ratios(benchmark::State& state, const std::string& prefix, int num, int den) const {
@@ -355,24 +379,12 @@ void BM_ThreadsPaired(benchmark::State& state) {
   CollisionCycle* both[2] = {&cycles[0], &cycles[1]};
   World* worlds[2] = {&f.world, &f.world};
   SideBySide pair;  // 0: one thread, 1: two
-  std::int64_t calls = 0;
-  for (auto _ : state) {
-    if (move) {
-      state.PauseTiming();
-      move_between_cycles(f.world, moving, calls);
-      state.ResumeTiming();
-    }
-    pair.run(both, worlds, calls);
-    ++calls;
-    if (cycles[0].contacts().size() != cycles[1].contacts().size()) {
-      state.SkipWithError("the 1- and 2-thread cycles found different contacts");
-      return;
-    }
-  }
-  const double n = static_cast<double>(std::max<std::int64_t>(calls, 1));
+  if (!pair.loop(state, both, worlds, move, [&](std::int64_t call) { move_between_cycles(f.world, moving, call); },
+                 "the 1- and 2-thread cycles found different contacts"))
+    return;
   state.counters["speedup_2t"] = pair.seconds[1] > 0.0 ? pair.seconds[0] / pair.seconds[1] : 0.0;
-  state.counters["ms_1t"] = 1e3 * pair.seconds[0] / n;
-  state.counters["ms_2t"] = 1e3 * pair.seconds[1] / n;
+  state.counters["ms_1t"] = pair.ms_per_call(0);
+  state.counters["ms_2t"] = pair.ms_per_call(1);
   state.counters["colliding"] = static_cast<double>(cycles[0].contacts().size());
   // speedup_<stage>: the same ratio for each stage that took time (the
   // serial ones, propagate and forces, show ~1).
@@ -407,22 +419,14 @@ void BM_OrderPaired(benchmark::State& state) {
   CollisionCycle* both[2] = {&cycles[0], &cycles[1]};
   World* worlds[2] = {&f[0].world, &f[1].world};
   SideBySide pair;  // 0: the file's numbering, 1: renumbered
-  std::int64_t calls = 0;
-  for (auto _ : state) {
-    state.PauseTiming();
-    for (Fixture& g : f) move_between_cycles(g.world, moving, calls);
-    state.ResumeTiming();
-    pair.run(both, worlds, calls);
-    ++calls;
-    if (cycles[0].contacts().size() != cycles[1].contacts().size()) {
-      state.SkipWithError("the renumbered dog pair found a different number of contacts");
-      return;
-    }
-  }
-  const double n = static_cast<double>(std::max<std::int64_t>(calls, 1));
+  const auto move = [&](std::int64_t call) {
+    for (Fixture& g : f) move_between_cycles(g.world, moving, call);
+  };
+  if (!pair.loop(state, both, worlds, true, move, "the renumbered dog pair found a different number of contacts"))
+    return;
   state.counters["time_ratio"] = pair.seconds[0] > 0.0 ? pair.seconds[1] / pair.seconds[0] : 0.0;
-  state.counters["ms_file"] = 1e3 * pair.seconds[0] / n;
-  state.counters["ms_renumbered"] = 1e3 * pair.seconds[1] / n;
+  state.counters["ms_file"] = pair.ms_per_call(0);
+  state.counters["ms_renumbered"] = pair.ms_per_call(1);
   state.counters["colliding"] = static_cast<double>(cycles[0].contacts().size());
   pair.stage_ratios(state, "ratio_", 1, 0);
 }

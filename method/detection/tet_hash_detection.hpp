@@ -87,10 +87,9 @@ class TetHashDetector {
   /// body) is not entered: no query point can pass its box test, so every
   /// query finds and is charged exactly what it would with the tet entered
   /// (a widened query could pass its grown box and be charged it: hence
-  /// unwidened). Its cells are still
-  /// charged (work units unchanged), its HashOverflow thrown as the insert
-  /// would (the same cell count, checked), its box stored and in its body's
-  /// union. Only the table is smaller (memory_bytes() may be too). The
+  /// unwidened). Its cells are still charged (work units unchanged), its
+  /// HashOverflow thrown as the insert would (the same cell count, checked),
+  /// its box stored and in its body's union. Only the table is smaller (memory_bytes() may be too). The
   /// paper's algorithm with a pre-filter the design notes measured (skip
   /// tets outside the other object's box).
   std::uint64_t hash_tets(const World& world, const CollisionPairs& pairs, WorkerPool* pool = nullptr,
@@ -193,6 +192,7 @@ class TetHashDetector {
   SpatialHash m_hash;
   SpatialHash m_overflow;                             // refresh only; allocated by enable_refresh()
   bool m_overflow_active = false;                     // queries search m_overflow too
+  bool m_widening = false;                            // enable_widening(): the table always hashes
   std::size_t m_overflow_tets = 0;
   // Per global tet (refresh only), the cell range it was hashed in, as
   // limits on its box's grid coordinates (SpatialHash::grid_coordinate):
@@ -226,7 +226,6 @@ class TetHashDetector {
   /// when its caller queries at the hash's positions only.
   std::vector<BoxUnion> m_query_reach;
   void reach_of_queries(const World& world, const CollisionPairs& pairs, const std::vector<BoxUnion>& vertices);
-  bool m_widening = false;                            // enable_widening(): the table always hashes
   /// Makes m_partner_boxes from m_body_boxes after a complete hash or refresh.
   void finish_body_boxes(const World& world, const CollisionPairs& pairs);
   QueryScratch m_scratch;                             // the single-threaded queries'

@@ -70,6 +70,38 @@ TestBox box_at(const std::vector<Vec3>& x, const Tet& t) {
   return box;
 }
 
+// Every test scene at three separations of its movable bodies (0, 0.45 and
+// 3 cells, jittered by a fifth of that): f(world, pairs, settings) with the
+// bodies moved there.
+template <typename F>
+void for_each_scene_apart(F&& f) {
+  for (const auto& [name, scene] : test::collision_scenes())
+    for (const double shift_cells : {0.0, 0.45, 3.0}) {
+      INFO(name << ", shift " << shift_cells << " cells");
+      World world = build_world(scene);
+      const CollisionPairs pairs(world);
+      const DetectionSettings settings = test::settings_of(world, scene).detection;
+      move_bodies(world, settings.cell_size_m, shift_cells, 0.2 * shift_cells);
+      f(world, pairs, settings);
+    }
+}
+
+// Every vertex's unwidened query finds the same tet in `got` as in `want`,
+// and is charged the same work.
+void require_same_queries(const World& world, const CollisionPairs& pairs, TetHashDetector& want,
+                          TetHashDetector& got) {
+  for (std::int32_t o = 0; o < static_cast<std::int32_t>(world.bodies.size()); ++o)
+    for (std::int32_t v = 0; v < static_cast<std::int32_t>(world.bodies[o].x_m.size()); ++v) {
+      std::uint64_t want_work = 0, got_work = 0;
+      const auto want_hit = want.query_point(world, pairs, o, v, want_work);
+      const auto got_hit = got.query_point(world, pairs, o, v, got_work);
+      INFO("body " << o << ", vertex " << v);
+      CHECK(got_work == want_work);
+      REQUIRE(got_hit.has_value() == want_hit.has_value());
+      if (got_hit) CHECK(std::tie(got_hit->other, got_hit->tet) == std::tie(want_hit->other, want_hit->tet));
+    }
+}
+
 std::uint64_t refresh(const World& world, const CollisionPairs& pairs, TetHashDetector& detector,
                       std::size_t per_task) {
   detector.begin_refresh();
@@ -496,42 +528,27 @@ TEST_CASE("a hash made for queries at its own positions leaves out the tets no q
   // positions). A self-colliding body's tets, which its own vertices query,
   // must all stay in: the folded pair's own queries check that.
   bool some_skipped = false;
-  for (const auto& [name, scene] : test::collision_scenes())
-    for (const double shift_cells : {0.0, 0.45, 3.0}) {
-      INFO(name << ", shift " << shift_cells << " cells");
-      World world = build_world(scene);
-      const CollisionPairs pairs(world);
-      const DetectionSettings settings = test::settings_of(world, scene).detection;
-      move_bodies(world, settings.cell_size_m, shift_cells, 0.2 * shift_cells);
-      TetHashDetector full(world, settings);
-      const std::uint64_t full_work = full.hash_tets(world, pairs);
-      for (const int threads : {0, 1, 2}) {
-        INFO(threads << " threads");
-        WorkerPool pool(std::max(threads, 1));
-        TetHashDetector reached(world, settings);
-        CHECK(reached.hash_tets(world, pairs, threads > 0 ? &pool : nullptr, true) == full_work);
-        CHECK(reached.hash().entry_count() <= full.hash().entry_count());
-        some_skipped = some_skipped || reached.hash().entry_count() < full.hash().entry_count();
-        for (std::int32_t o = 0; o < static_cast<std::int32_t>(world.bodies.size()); ++o)
-          for (std::int32_t v = 0; v < static_cast<std::int32_t>(world.bodies[o].x_m.size()); ++v) {
-            std::uint64_t want_work = 0, got_work = 0;
-            const auto want = full.query_point(world, pairs, o, v, want_work);
-            const auto got = reached.query_point(world, pairs, o, v, got_work);
-            INFO("body " << o << ", vertex " << v);
-            CHECK(got_work == want_work);
-            REQUIRE(got.has_value() == want.has_value());
-            if (got) CHECK(std::tie(got->other, got->tet) == std::tie(want->other, want->tet));
-          }
-        for (std::size_t b = 0; b < world.bodies.size(); ++b) {
-          CHECK(reached.body_box(b).lo == full.body_box(b).lo);  // every box stored, skipped or not
-          CHECK(reached.body_box(b).hi == full.body_box(b).hi);
-        }
+  for_each_scene_apart([&](World& world, const CollisionPairs& pairs, const DetectionSettings& settings) {
+    TetHashDetector full(world, settings);
+    const std::uint64_t full_work = full.hash_tets(world, pairs);
+    for (const int threads : {0, 1, 2}) {
+      INFO(threads << " threads");
+      WorkerPool pool(std::max(threads, 1));
+      TetHashDetector reached(world, settings);
+      CHECK(reached.hash_tets(world, pairs, threads > 0 ? &pool : nullptr, true) == full_work);
+      CHECK(reached.hash().entry_count() <= full.hash().entry_count());
+      some_skipped = some_skipped || reached.hash().entry_count() < full.hash().entry_count();
+      require_same_queries(world, pairs, full, reached);
+      for (std::size_t b = 0; b < world.bodies.size(); ++b) {
+        CHECK(reached.body_box(b).lo == full.body_box(b).lo);  // every box stored, skipped or not
+        CHECK(reached.body_box(b).hi == full.body_box(b).hi);
       }
-      TetHashDetector refreshing(world, settings);
-      refreshing.enable_refresh();
-      CHECK(refreshing.hash_tets(world, pairs, nullptr, true) == full_work);
-      CHECK(refreshing.hash().entry_count() == full.hash().entry_count());
     }
+    TetHashDetector refreshing(world, settings);
+    refreshing.enable_refresh();
+    CHECK(refreshing.hash_tets(world, pairs, nullptr, true) == full_work);
+    CHECK(refreshing.hash().entry_count() == full.hash().entry_count());
+  });
   CHECK(some_skipped);
 }
 
@@ -545,58 +562,46 @@ TEST_CASE("a dense grid in place of the hash answers and charges every query, an
   // detector with enable_widening(), whose table hashes), and the hash's
   // work must be the same, with and without the skip of unreachable tets,
   // on 0 to 2 threads. A widened query of a dense table is refused.
-  for (const auto& [name, scene] : test::collision_scenes())
-    for (const double shift_cells : {0.0, 0.45, 3.0}) {
-      INFO(name << ", shift " << shift_cells << " cells");
-      World world = build_world(scene);
-      const CollisionPairs pairs(world);
-      const DetectionSettings settings = test::settings_of(world, scene).detection;
-      move_bodies(world, settings.cell_size_m, shift_cells, 0.2 * shift_cells);
-      std::vector<std::vector<Vec3>> at_hash;  // the positions both tables are hashed at
-      for (const Body& b : world.bodies) at_hash.push_back(b.x_m);
-      for (const bool skip : {false, true}) {
-        for (std::size_t b = 0; b < world.bodies.size(); ++b) world.bodies[b].x_m = at_hash[b];
-        TetHashDetector hashed(world, settings);
-        hashed.enable_widening();
-        const std::uint64_t hashed_work = hashed.hash_tets(world, pairs, nullptr, skip);
-        REQUIRE_FALSE(hashed.hash().dense());
-        for (const int threads : {0, 1, 2}) {
-          INFO(threads << " threads, skip " << skip);
-          WorkerPool pool(std::max(threads, 1));
-          for (std::size_t b = 0; b < world.bodies.size(); ++b) world.bodies[b].x_m = at_hash[b];
-          World& moved = world;  // moved on below, reset here for each thread count
-          TetHashDetector dense(moved, settings);
-          CHECK(dense.hash_tets(moved, pairs, threads > 0 ? &pool : nullptr, skip) == hashed_work);
-          REQUIRE(dense.hash().dense());
-          CHECK(dense.hash().entry_count() == hashed.hash().entry_count());
-          // At the hash's positions, then moved on (a cycle spanning steps
-          // queries its table later: unless skipping, which promises not).
-          for (const double later_cells : {0.0, 0.7}) {
-            if (skip && later_cells > 0.0) continue;
-            if (later_cells > 0.0) move_bodies(moved, settings.cell_size_m, later_cells, 0.3);
-            for (std::int32_t o = 0; o < static_cast<std::int32_t>(moved.bodies.size()); ++o)
-              for (std::int32_t v = 0; v < static_cast<std::int32_t>(moved.bodies[o].x_m.size()); ++v) {
-                std::uint64_t want_work = 0, got_work = 0;
-                const auto want = hashed.query_point(moved, pairs, o, v, want_work);
-                const auto got = dense.query_point(moved, pairs, o, v, got_work);
-                INFO("body " << o << ", vertex " << v << ", moved on " << later_cells);
-                CHECK(got_work == want_work);
-                REQUIRE(got.has_value() == want.has_value());
-                if (got) CHECK(std::tie(got->other, got->tet) == std::tie(want->other, want->tet));
-              }
-          }
-          std::uint64_t work = 0;
-          CHECK_THROWS_AS(dense.query_point(moved, pairs, 0, 0, work, 0.1 * settings.cell_size_m), std::logic_error);
-          CHECK_THROWS_AS(dense.query_point(moved, pairs, 0, 0, work, std::numeric_limits<double>::quiet_NaN()),
-                          std::logic_error);
-        }
-      }
+  for_each_scene_apart([&](World& world, const CollisionPairs& pairs, const DetectionSettings& settings) {
+    std::vector<std::vector<Vec3>> at_hash;  // the positions both tables are hashed at
+    for (const Body& b : world.bodies) at_hash.push_back(b.x_m);
+    const auto back_to_hash = [&] {
       for (std::size_t b = 0; b < world.bodies.size(); ++b) world.bodies[b].x_m = at_hash[b];
-      TetHashDetector refreshing(world, settings);
-      refreshing.enable_refresh();
-      refreshing.hash_tets(world, pairs);
-      CHECK_FALSE(refreshing.hash().dense());
+    };
+    for (const bool skip : {false, true}) {
+      back_to_hash();
+      TetHashDetector hashed(world, settings);
+      hashed.enable_widening();
+      const std::uint64_t hashed_work = hashed.hash_tets(world, pairs, nullptr, skip);
+      REQUIRE_FALSE(hashed.hash().dense());
+      for (const int threads : {0, 1, 2}) {
+        INFO(threads << " threads, skip " << skip);
+        WorkerPool pool(std::max(threads, 1));
+        back_to_hash();  // the last thread count moved them on
+        TetHashDetector dense(world, settings);
+        CHECK(dense.hash_tets(world, pairs, threads > 0 ? &pool : nullptr, skip) == hashed_work);
+        REQUIRE(dense.hash().dense());
+        CHECK(dense.hash().entry_count() == hashed.hash().entry_count());
+        // At the hash's positions, then moved on (a cycle spanning steps
+        // queries its table later: unless skipping, which promises not).
+        require_same_queries(world, pairs, hashed, dense);
+        if (!skip) {
+          move_bodies(world, settings.cell_size_m, 0.7, 0.3);
+          INFO("moved on 0.7 cells");
+          require_same_queries(world, pairs, hashed, dense);
+        }
+        std::uint64_t work = 0;
+        CHECK_THROWS_AS(dense.query_point(world, pairs, 0, 0, work, 0.1 * settings.cell_size_m), std::logic_error);
+        CHECK_THROWS_AS(dense.query_point(world, pairs, 0, 0, work, std::numeric_limits<double>::quiet_NaN()),
+                        std::logic_error);
+      }
     }
+    back_to_hash();
+    TetHashDetector refreshing(world, settings);
+    refreshing.enable_refresh();
+    refreshing.hash_tets(world, pairs);
+    CHECK_FALSE(refreshing.hash().dense());
+  });
 }
 
 TEST_CASE("bodies far apart: a dense grid over them would be too large, so the table hashes, and answers and charges "
@@ -618,9 +623,7 @@ TEST_CASE("bodies far apart: a dense grid over them would be too large, so the t
     CHECK(far.hash_tets(world, pairs) == want_hash);
     if (far.hash().dense()) continue;  // one body alone (a self-colliding scene): its grid is small
     ++refused;
-    std::uint64_t want_work = 0, got_work = 0;
-    CHECK(query_all(world, pairs, &far, &got_work) == query_all(world, pairs, &hashed, &want_work));
-    CHECK(got_work == want_work);
+    require_same_queries(world, pairs, hashed, far);
   }
   CHECK(refused > 0);
 }
