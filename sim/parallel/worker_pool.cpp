@@ -1,20 +1,51 @@
 #include "sim/parallel/worker_pool.hpp"
 
+#include <sched.h>
+
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <stdexcept>
 
 namespace tcb {
+namespace {
+
+// CPUs the calling thread may run on (threads it starts inherit them); 1 if
+// they cannot be read.
+int allowed_cpu_count() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (sched_getaffinity(0, sizeof set, &set) != 0) return 1;
+  return CPU_COUNT(&set);
+}
+
+// Polls done() until it holds or poll_us() has passed; whether it held.
+template <typename Done>
+bool poll_until(const Done& done) {
+  const auto until = std::chrono::steady_clock::now() + std::chrono::microseconds(WorkerPool::poll_us());
+  for (;;) {
+    for (int i = 0; i < 64; ++i) {
+      if (done()) return true;
+#if defined(__x86_64__) || defined(__i386__)
+      __builtin_ia32_pause();  // lets a sibling hyperthread run, and saves power
+#endif
+    }
+    if (std::chrono::steady_clock::now() >= until) return done();
+  }
+}
+
+}  // namespace
 
 WorkerPool::WorkerPool(int threads) : m_threads(threads), m_errors(threads > 0 ? threads : 1) {
   if (threads < 1) throw std::invalid_argument("a worker pool needs at least one thread");
+  m_polls = threads > 1 && allowed_cpu_count() >= threads;
   for (int part = 1; part < threads; ++part) m_workers.emplace_back([this, part] { worker(part); });
 }
 
 WorkerPool::~WorkerPool() {
   {
     std::lock_guard<std::mutex> lock(m_mutex);
-    m_stop = true;
+    m_stop.store(true);
   }
   m_start.notify_all();
   for (std::thread& t : m_workers) t.join();
@@ -39,19 +70,21 @@ void WorkerPool::run_part(int part) {
 
 void WorkerPool::worker(int part) {
   std::size_t seen = 0;
+  const auto started = [&] { return m_stop.load() || m_generation.load() != seen; };
   for (;;) {
-    {
+    if (!(m_polls && poll_until(started))) {
       std::unique_lock<std::mutex> lock(m_mutex);
-      m_start.wait(lock, [&] { return m_stop || m_generation != seen; });
-      if (m_stop) return;
-      seen = m_generation;
+      m_start.wait(lock, started);
     }
+    if (m_stop.load()) return;
+    seen = m_generation.load();  // m_n and m_function were written before it was bumped
     run_part(part);
-    {
-      std::lock_guard<std::mutex> lock(m_mutex);
-      --m_pending;
+    if (m_pending.fetch_sub(1) == 1) {
+      // The caller may have checked m_pending under the lock and be about to
+      // block: taking the lock before notifying means it is blocked by now.
+      { std::lock_guard<std::mutex> lock(m_mutex); }
+      m_done.notify_one();
     }
-    m_done.notify_one();
   }
 }
 
@@ -60,17 +93,20 @@ void WorkerPool::for_ranges(std::size_t n, const RangeFunction& f) {
   m_n = n;
   m_function = &f;
   if (m_threads > 1) {
+    m_pending.store(m_threads - 1);
     {
       std::lock_guard<std::mutex> lock(m_mutex);
-      m_pending = m_threads - 1;
-      ++m_generation;
+      m_generation.fetch_add(1);
     }
     m_start.notify_all();
   }
   run_part(0);
   if (m_threads > 1) {
-    std::unique_lock<std::mutex> lock(m_mutex);
-    m_done.wait(lock, [&] { return m_pending == 0; });
+    const auto finished = [&] { return m_pending.load() == 0; };
+    if (!(m_polls && poll_until(finished))) {
+      std::unique_lock<std::mutex> lock(m_mutex);
+      m_done.wait(lock, finished);
+    }
   }
   m_function = nullptr;
   for (const std::exception_ptr& e : m_errors)

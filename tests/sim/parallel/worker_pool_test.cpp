@@ -1,6 +1,8 @@
 #include "sim/parallel/worker_pool.hpp"
 
 #include <catch2/catch.hpp>
+#include <pthread.h>
+#include <sched.h>
 
 #include <algorithm>
 #include <atomic>
@@ -114,4 +116,68 @@ TEST_CASE("worker pool chunks cover every index once, each chunk whole, and reth
     }
     CHECK_THROWS_AS(pool.for_chunks(10, 0, [](int, std::size_t, std::size_t) {}), std::invalid_argument);
   }
+}
+
+TEST_CASE("worker pool hands work over whether its threads poll or block", "[worker_pool]") {
+  // Each call writes plain (non-atomic) values on every thread and reads
+  // them after the call: the hand-off must publish them both ways. Gaps of
+  // 0, a fifth of and twice poll_us() between calls reach a worker while it
+  // polls and after it blocked; a part that outlasts poll_us() makes the
+  // caller block and be woken (a lost wake-up hangs here).
+  const auto poll = std::chrono::microseconds(WorkerPool::poll_us());
+  const auto wait = [](std::chrono::microseconds d) {
+    const auto until = std::chrono::steady_clock::now() + d;
+    while (std::chrono::steady_clock::now() < until) {
+    }
+  };
+  for (int threads : {2, 3}) {
+    WorkerPool pool(threads);
+    const std::chrono::microseconds gaps[] = {std::chrono::microseconds(0), poll / 5, 2 * poll};
+    for (int round = 0; round < 30; ++round) {
+      const auto gap = gaps[round % 3];
+      const bool slow_worker = round % 5 == 4, slow_caller = round % 7 == 6;
+      wait(gap);
+      std::vector<std::size_t> value(64, 0);
+      std::vector<std::thread::id> who(static_cast<std::size_t>(threads));
+      pool.for_ranges(value.size(), [&](int part, std::size_t begin, std::size_t end) {
+        who[static_cast<std::size_t>(part)] = std::this_thread::get_id();
+        if ((part == threads - 1 && slow_worker) || (part == 0 && slow_caller)) wait(2 * poll);
+        for (std::size_t i = begin; i < end; ++i) value[i] = i * 3 + static_cast<std::size_t>(round);
+      });
+      for (std::size_t i = 0; i < value.size(); ++i) REQUIRE(value[i] == i * 3 + static_cast<std::size_t>(round));
+      for (int part = 1; part < threads; ++part) REQUIRE(who[static_cast<std::size_t>(part)] != who[0]);
+    }
+  }
+}
+
+TEST_CASE("worker pool stops whether its workers poll or block", "[worker_pool]") {
+  // Destroyed right after a call (the workers still poll) and after they
+  // blocked; a worker that misses the stop hangs the join here.
+  for (const int gap_us : {0, 3 * WorkerPool::poll_us()}) {
+    WorkerPool pool(2);
+    std::atomic<int> ran{0};
+    pool.for_ranges(2, [&](int, std::size_t, std::size_t) { ++ran; });
+    std::this_thread::sleep_for(std::chrono::microseconds(gap_us));
+    CHECK(ran == 2);
+  }
+}
+
+TEST_CASE("worker pool polls only with a CPU a thread", "[worker_pool]") {
+  // A pool of one has no worker to poll for. A pool started on a thread
+  // pinned to one CPU shares that CPU, where a poller would hold the CPU the
+  // thread it waits for needs: it must block instead.
+  CHECK_FALSE(WorkerPool(1).polls());
+  cpu_set_t saved;
+  CPU_ZERO(&saved);
+  REQUIRE(pthread_getaffinity_np(pthread_self(), sizeof saved, &saved) == 0);
+  int first = 0;
+  while (!CPU_ISSET(first, &saved)) ++first;
+  cpu_set_t one;
+  CPU_ZERO(&one);
+  CPU_SET(first, &one);
+  REQUIRE(pthread_setaffinity_np(pthread_self(), sizeof one, &one) == 0);
+  const bool pinned_polls = WorkerPool(2).polls();
+  pthread_setaffinity_np(pthread_self(), sizeof saved, &saved);
+  CHECK_FALSE(pinned_polls);
+  if (CPU_COUNT(&saved) >= 2) CHECK(WorkerPool(2).polls());
 }
