@@ -30,6 +30,7 @@ CollisionCycle::CollisionCycle(const World& world, CollisionSettings settings, D
   if (m_settings.threads > 1 && mode == DetectionMode::SpatialHash) {
     m_pool = std::make_unique<WorkerPool>(m_settings.threads);
     for (int t = 0; t < m_settings.threads; ++t) m_thread_scratch.push_back(m_detector.make_scratch());
+    m_thread_hits.resize(static_cast<std::size_t>(m_settings.threads));
   }
   // [0] serves the serial path; with a pool, one a thread.
   for (int t = 0; t < (m_pool ? m_settings.threads : 1); ++t) m_surface_scratch.push_back(m_surface.make_scratch());
@@ -371,7 +372,7 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
           if (!batch_holds(world)) query_batch(world, budget);
           const Answer& answer = m_batch[m_cursor++ - m_batch_begin];
           work = answer.work;
-          if (answer.hit) add_contact(*answer.hit);
+          if (answer.part >= 0) add_contact(hit_of(answer));
         } else if (m_cursor < m_queries.size()) {
           const auto [body, vertex] =
               m_queries[m_order == WorkOrder::FastestFirst ? m_query_order[m_cursor++] : m_cursor++];
@@ -442,7 +443,7 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
               if (!batch_holds(world)) depth_batch(world, budget);
               const Answer& answer = m_batch[m_cursor - m_batch_begin];
               work += answer.work;
-              c = *answer.hit;
+              c = hit_of(answer);
             } else {
               work += border_point_depth(world, c, m_contacts, m_lookup, m_surface, m_surface_scratch[0],
                                          m_surface_margin_m);
@@ -597,6 +598,7 @@ void CollisionCycle::run_batch(std::size_t remaining, const World& world, const 
                                const WorkerPool::RangeFunction& f) {
   const std::size_t size = batch_size(remaining, budget);
   m_batch.assign(size, Answer{});
+  for (ThreadHits& t : m_thread_hits) t.hits.clear();
   m_batch_begin = m_cursor;
   m_batch_step = world.step_index;
   const bool timed = budget.kind() == BudgetKind::WallMs;
@@ -634,7 +636,7 @@ void CollisionCycle::depth_batch(const World& world, const Budget& budget) {
       Contact c = m_contacts[m_batch_begin + i];
       m_batch[i].work =
           border_point_depth(world, c, m_contacts, m_lookup, m_surface, scratch, m_surface_margin_m);
-      m_batch[i].hit = c;
+      keep_hit(m_batch[i], part, c);
     }
   });
 }
@@ -645,7 +647,8 @@ void CollisionCycle::query_batch(const World& world, const Budget& budget) {
     for (std::size_t i = begin; i < end; ++i) {
       const std::size_t at = m_batch_begin + i;
       const auto [body, vertex] = m_queries[m_order == WorkOrder::FastestFirst ? m_query_order[at] : at];
-      m_batch[i].hit = m_detector.query_point(world, m_pairs, body, vertex, m_batch[i].work, m_tet_margin_m, scratch);
+      if (const auto hit = m_detector.query_point(world, m_pairs, body, vertex, m_batch[i].work, m_tet_margin_m, scratch))
+        keep_hit(m_batch[i], part, *hit);
     }
   });
 }
@@ -661,8 +664,10 @@ std::size_t CollisionCycle::memory_bytes() const {
   std::size_t bytes = m_detector.memory_bytes() + m_surface.memory_bytes() + heap_bytes(m_query_order) +
                       heap_bytes(m_queries) + heap_bytes(m_surface_bodies) + heap_bytes(m_layer_items) +
                       heap_bytes(m_layer_mark) + heap_bytes(m_contacts) + heap_bytes(m_lookup) + heap_bytes(m_batch) +
-                      heap_bytes(m_thread_scratch) + heap_bytes(m_surface_scratch) + heap_bytes(m_surface_work);
+                      heap_bytes(m_thread_scratch) + heap_bytes(m_thread_hits) + heap_bytes(m_surface_scratch) +
+                      heap_bytes(m_surface_work);
   for (const auto& s : m_thread_scratch) bytes += heap_bytes(s.tested);
+  for (const auto& t : m_thread_hits) bytes += heap_bytes(t.hits);
   for (const auto& s : m_surface_scratch) bytes += heap_bytes(s.seen);
   return bytes;
 }

@@ -416,7 +416,7 @@ TEST_CASE("without a budget full handling is the same run on 1 and 2 threads", "
   const double one = run["collision_memory"]["bytes_per_tet"].get<double>();
   CHECK(one > 56.0);  // at least a box, an owner and a stamp per tet
   CHECK(threaded["collision_memory"]["bytes_per_tet"].get<double>() > one);
-  // The performance issue's ceiling, 1 KB a tet (266 and 400 B here on 1 and
+  // The performance issue's ceiling, 1 KB a tet (266 and 392 B here on 1 and
   // 2 threads; 234 B at 1M tets, scaling_large.toml): a table, list or
   // scratch that grew with the wrong size fails here first.
   CHECK(threaded["collision_memory"]["bytes_per_tet"].get<double>() < 1024.0);
