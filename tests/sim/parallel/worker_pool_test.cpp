@@ -7,11 +7,51 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
+#include <cstdio>
+#include <cstdlib>
+#include <mutex>
 #include <stdexcept>
 #include <thread>
 #include <vector>
 
 using namespace tcb;
+
+namespace {
+
+// Ends the test binary with a failure if the test case it guards has not
+// finished after `seconds`: a lost wake-up or a missed stop in the pool
+// hangs rather than failing, and ctest sets no time limit on these tests.
+class Watchdog {
+ public:
+  explicit Watchdog(int seconds)
+      : m_thread([this, seconds] {
+          std::unique_lock<std::mutex> lock(m_mutex);
+          if (!m_finished.wait_for(lock, std::chrono::seconds(seconds), [this] { return m_done; })) {
+            std::fprintf(stderr, "worker pool test still running after %d s: a lost wake-up or a missed stop\n",
+                         seconds);
+            std::_Exit(1);
+          }
+        }) {}
+  ~Watchdog() {
+    {
+      std::lock_guard<std::mutex> lock(m_mutex);
+      m_done = true;
+    }
+    m_finished.notify_one();
+    m_thread.join();
+  }
+  Watchdog(const Watchdog&) = delete;
+  Watchdog& operator=(const Watchdog&) = delete;
+
+ private:
+  std::mutex m_mutex;
+  std::condition_variable m_finished;
+  bool m_done = false;
+  std::thread m_thread;  // last: starts once the members it reads exist
+};
+
+}  // namespace
 
 TEST_CASE("worker pool ranges cover every index once, contiguous and balanced", "[worker_pool]") {
   for (int parts : {1, 2, 3, 7})
@@ -29,6 +69,7 @@ TEST_CASE("worker pool ranges cover every index once, contiguous and balanced", 
 }
 
 TEST_CASE("worker pool runs every index once, on several threads, and can be reused", "[worker_pool]") {
+  const Watchdog watchdog(60);
   for (int threads : {1, 2, 4}) {
     WorkerPool pool(threads);
     for (int round = 0; round < 50; ++round) {
@@ -48,6 +89,7 @@ TEST_CASE("worker pool runs every index once, on several threads, and can be reu
 }
 
 TEST_CASE("worker pool rethrows the lowest failing part's exception after all parts ran", "[worker_pool]") {
+  const Watchdog watchdog(60);
   WorkerPool pool(3);
   std::atomic<int> ran{0};
   try {
@@ -69,6 +111,7 @@ TEST_CASE("worker pool rethrows the lowest failing part's exception after all pa
 
 TEST_CASE("worker pool chunks cover every index once, each chunk whole, and rethrow the lowest chunk's exception",
           "[worker_pool]") {
+  const Watchdog watchdog(60);
   for (int threads : {1, 2, 3}) {
     WorkerPool pool(threads);
     for (std::size_t chunk : {1, 5, 16})
@@ -119,6 +162,7 @@ TEST_CASE("worker pool chunks cover every index once, each chunk whole, and reth
 }
 
 TEST_CASE("worker pool hands work over whether its threads poll or block", "[worker_pool]") {
+  const Watchdog watchdog(60);
   // Each call writes plain (non-atomic) values on every thread and reads
   // them after the call: the hand-off must publish them both ways. Gaps of
   // 0, a fifth of and twice poll_us() between calls reach a worker while it
@@ -151,6 +195,7 @@ TEST_CASE("worker pool hands work over whether its threads poll or block", "[wor
 }
 
 TEST_CASE("worker pool stops whether its workers poll or block", "[worker_pool]") {
+  const Watchdog watchdog(60);
   // Destroyed right after a call (the workers still poll) and after they
   // blocked; a worker that misses the stop hangs the join here.
   for (const int gap_us : {0, 3 * WorkerPool::poll_us()}) {
