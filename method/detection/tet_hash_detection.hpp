@@ -89,9 +89,9 @@ class TetHashDetector {
   /// (a widened query could pass its grown box and be charged it: hence
   /// unwidened). Its cells are still charged (work units unchanged), its
   /// HashOverflow thrown as the insert would (the same cell count, checked),
-  /// its box stored and in its body's union. Only the table is smaller (memory_bytes() may be too). The
-  /// paper's algorithm with a pre-filter the design notes measured (skip
-  /// tets outside the other object's box).
+  /// its box stored and in its body's union. Only the table is smaller
+  /// (memory_bytes() may be too). The paper's algorithm with a pre-filter
+  /// the design notes measured (skip tets outside the other object's box).
   std::uint64_t hash_tets(const World& world, const CollisionPairs& pairs, WorkerPool* pool = nullptr,
                           bool queries_at_these_positions = false);
   /// Stage 1 in pieces: begin_hash() empties the table; each hash_some_tets()

@@ -647,8 +647,8 @@ void CollisionCycle::query_batch(const World& world, const Budget& budget) {
     for (std::size_t i = begin; i < end; ++i) {
       const std::size_t at = m_batch_begin + i;
       const auto [body, vertex] = m_queries[m_order == WorkOrder::FastestFirst ? m_query_order[at] : at];
-      if (const auto hit = m_detector.query_point(world, m_pairs, body, vertex, m_batch[i].work, m_tet_margin_m, scratch))
-        keep_hit(m_batch[i], part, *hit);
+      const auto hit = m_detector.query_point(world, m_pairs, body, vertex, m_batch[i].work, m_tet_margin_m, scratch);
+      if (hit) keep_hit(m_batch[i], part, *hit);
     }
   });
 }

@@ -19,9 +19,12 @@ int allowed_cpu_count() {
   return CPU_COUNT(&set);
 }
 
-// Polls done() until it holds or poll_us() has passed; whether it held.
+// Polls done() until it holds or poll_us() has passed; whether it held. The
+// clock is read only when the first look fails (a section that is already
+// over, or work that has already arrived, costs one load).
 template <typename Done>
 bool poll_until(const Done& done) {
+  if (done()) return true;
   const auto until = std::chrono::steady_clock::now() + std::chrono::microseconds(WorkerPool::poll_us());
   for (;;) {
     for (int i = 0; i < 64; ++i) {
