@@ -389,6 +389,14 @@ void BM_ThreadsPaired(benchmark::State& state) {
   // speedup_<stage>: the same ratio for each stage that took time (the
   // serial ones, propagate and forces, show ~1).
   pair.stage_ratios(state, "speedup_", 0, 1);
+  // ms1_<stage>, ms2_<stage>: the stage's time a cycle on 1 and 2 threads,
+  // so a stage's loss (ms2 - ms1 / 2) can be weighed against the others'.
+  for (std::size_t st = 0; st < kCostStages; ++st) {
+    if (!(pair.stages[0].ms[st] > 0.0) || static_cast<CostStage>(st) == CostStage::Apply) continue;
+    const std::string name(cost_stage_name(static_cast<CostStage>(st)));
+    state.counters["ms1_" + name] = pair.stages[0].ms[st] / static_cast<double>(std::max<std::int64_t>(pair.calls, 1));
+    state.counters["ms2_" + name] = pair.stages[1].ms[st] / static_cast<double>(std::max<std::int64_t>(pair.calls, 1));
+  }
 }
 BENCHMARK(BM_ThreadsPaired)->Args({0, 0})->Args({1, 0})->Args({0, 125})->Unit(benchmark::kMillisecond);
 

@@ -111,10 +111,12 @@ TetHashDetector::TetHashDetector(const World& world, const DetectionSettings& se
 }
 
 std::size_t TetHashDetector::memory_bytes() const {
-  return m_hash.memory_bytes() + m_overflow.memory_bytes() + heap_bytes(m_hashed_cells) + heap_bytes(m_left_cells) +
-         heap_bytes(m_body_tet_offset) +
-         heap_bytes(m_owner) + heap_bytes(m_boxes) + heap_bytes(m_body_boxes) + heap_bytes(m_partner_boxes) + heap_bytes(m_query_reach) +
-         heap_bytes(m_scratch.tested);
+  std::size_t bytes = m_hash.memory_bytes() + m_overflow.memory_bytes() + heap_bytes(m_hashed_cells) +
+                      heap_bytes(m_part_left) + heap_bytes(m_left_ids) + heap_bytes(m_body_tet_offset) +
+                      heap_bytes(m_owner) + heap_bytes(m_boxes) + heap_bytes(m_body_boxes) +
+                      heap_bytes(m_partner_boxes) + heap_bytes(m_query_reach) + heap_bytes(m_scratch.tested);
+  for (const LeftIds& left : m_part_left) bytes += heap_bytes(left.ids);
+  return bytes;
 }
 
 void TetHashDetector::store_box(const Body& body, std::size_t t, std::uint32_t id) {
@@ -298,9 +300,12 @@ std::uint64_t TetHashDetector::refresh_tets(const World& world, const CollisionP
   begin_refresh();  // from the first tet, whatever a refresh before left
   // walk_tets()'s choice of tets, by global id: ids run body by body, tet by
   // tet, so ascending ids are the walk's order.
-  m_left_cells.assign(m_boxes.size(), 0);
   std::optional<WorkerPool> caller;  // made only when needed: a pool is not free to build
   WorkerPool& threads = pool ? *pool : caller.emplace(1);
+  m_part_left.resize(static_cast<std::size_t>(threads.threads()));
+  // Every list emptied here, not by its part: a part with an empty range
+  // never runs.
+  for (LeftIds& left : m_part_left) left.ids.clear();
   PartUnions part_boxes(threads.threads(), world.bodies.size());
   const auto check = [&](int part, std::size_t begin, std::size_t end) {
     std::uint64_t visited = 0;
@@ -310,6 +315,7 @@ std::uint64_t TetHashDetector::refresh_tets(const World& world, const CollisionP
     // keep_table, 6 paired rounds).
     std::size_t body_of_union = world.bodies.size();
     BoxUnion union_box;
+    std::vector<std::uint32_t>& left = m_part_left[static_cast<std::size_t>(part)].ids;
     for (std::size_t id = begin; id < end; ++id) {
       const std::size_t b = static_cast<std::size_t>(m_owner[id]);
       const Body& body = world.bodies[b];
@@ -322,7 +328,7 @@ std::uint64_t TetHashDetector::refresh_tets(const World& world, const CollisionP
         union_box = BoxUnion{};
       }
       union_box.add_box(m_boxes[id].lo, m_boxes[id].hi);
-      m_left_cells[id] = !within_hashed_cells(static_cast<std::uint32_t>(id));
+      if (!within_hashed_cells(static_cast<std::uint32_t>(id))) left.push_back(static_cast<std::uint32_t>(id));
       ++visited;
     }
     if (body_of_union < world.bodies.size()) part_boxes.at(part, body_of_union).add_union(union_box);
@@ -340,15 +346,18 @@ std::uint64_t TetHashDetector::refresh_tets(const World& world, const CollisionP
   // The tets that left their cells into the overflow, in id order, built at
   // once as hash_tets() builds the main table (its buckets list their tets
   // by ascending id, as queries need); a later build is then a no-op.
-  m_overflow_tets = static_cast<std::size_t>(std::count(m_left_cells.begin(), m_left_cells.end(), 1));
-  const auto box_of = [&](std::size_t id, Vec3& lo, Vec3& hi, std::uint32_t& item) {
-    if (!m_left_cells[id]) return false;
-    item = static_cast<std::uint32_t>(id);
-    lo = m_boxes[id].lo;
-    hi = m_boxes[id].hi;
+  // Parts hold ascending ranges of ids, so their lists in part order are
+  // the ids in ascending order.
+  m_left_ids.clear();
+  for (const LeftIds& left : m_part_left) m_left_ids.insert(m_left_ids.end(), left.ids.begin(), left.ids.end());
+  m_overflow_tets = m_left_ids.size();
+  const auto box_of = [&](std::size_t i, Vec3& lo, Vec3& hi, std::uint32_t& item) {
+    item = m_left_ids[i];
+    lo = m_boxes[item].lo;
+    hi = m_boxes[item].hi;
     return true;
   };
-  work += work::kCellInsert * m_overflow.insert_all_and_build(m_boxes.size(), box_of, threads);
+  work += work::kCellInsert * m_overflow.insert_all_and_build(m_left_ids.size(), box_of, threads);
   finish_body_boxes(world, pairs);
   m_hash_body = world.bodies.size();
   m_overflow_active = m_overflow_tets > 0;
