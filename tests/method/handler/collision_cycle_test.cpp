@@ -6,6 +6,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <array>
 #include <set>
 #include <tuple>
 
@@ -106,6 +107,11 @@ TEST_CASE("threads change neither contacts, depths nor any task's work, one task
     Trace serial_trace;
     Found serial_single, serial_whole;
     std::vector<Contact> serial_contacts;
+    // The unlimited cycle's tasks, units spent, largest task and work a
+    // stage: on threads its batch's answers are taken in one loop (no
+    // budget, so nothing stops between them), each still a task of its own.
+    using Tally = std::tuple<std::int64_t, std::uint64_t, std::uint64_t, std::array<std::uint64_t, kCostStages>>;
+    Tally serial_tally;
     for (const int threads : {1, 2, 3}) {
       INFO("threads " << threads);
       World w = build_world(scene);  // never stepped: every contact is detected at this step's positions
@@ -123,8 +129,10 @@ TEST_CASE("threads change neither contacts, depths nor any task's work, one task
       }
       CollisionCycle whole(w, settings);
       whole.begin(w);
+      whole.start_step_costs();
       Budget unlimited = Budget::unlimited();
       REQUIRE(whole.advance(w, unlimited));
+      const Tally tally{whole.tasks_done(), unlimited.spent(), unlimited.max_task_work(), whole.step_costs().work};
       // Without a budget the surface hash ran on the threads as a whole; one
       // task a call never affords it.
       CHECK(whole.parallel_surface_hashes() == (threads > 1 ? 1 : 0));
@@ -134,6 +142,7 @@ TEST_CASE("threads change neither contacts, depths nor any task's work, one task
         serial_trace = trace;
         serial_single = found(cycle);
         serial_whole = found(whole);
+        serial_tally = tally;
         REQUIRE(!serial_single.empty());
         CHECK(serial_single == serial_whole);
         CHECK(std::count_if(serial_single.begin(), serial_single.end(), [](const auto& f) {
@@ -144,6 +153,7 @@ TEST_CASE("threads change neither contacts, depths nor any task's work, one task
         CHECK(same_contacts(cycle.contacts(), serial_contacts));
         CHECK(found(cycle) == serial_single);
         CHECK(found(whole) == serial_whole);
+        CHECK(tally == serial_tally);
         // Under a wall budget (a clock ticking 1 ms a reading, 5 ms a call)
         // batches are sized by time, so where calls stop differs; at fixed
         // positions the contacts may not.
