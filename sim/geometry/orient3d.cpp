@@ -144,7 +144,128 @@ bool every_term_has_zero_factor(double ax, double ay, double az, double bx, doub
          zero(az, by, cx);
 }
 
+// The summation stage's certificate: with S the sum of the 24 parts'
+// magnitudes and A that sum as computed (S <= A (1 + 24 eps)), Sum2's error
+// is below 530 eps^2 A (1 + 100 eps) (see the stage), under 2^10 eps^2 A.
+constexpr double kSum2Bound = 0x1p-96;  // 2^10 eps^2
+// A smallest A for which 2^-96 A is a normal double (the product is then
+// exact: a power of two).
+constexpr double kSmallestParts = 0x1p-900;
+
+// After Sum2, up to this many further VecSum passes (for exact zeros).
+constexpr int kMorePasses = 2;
+// The smallest error sum the passes' certificate trusts: with it (and so
+// with every partial sum at least this, or adding exactly below the normal
+// range) the product E (1 + 2^-47) is normal and rounds relatively.
+constexpr double kSmallestCertified = 0x1p-1000;
+
+// Two-Product with a fused multiply-add: a b = p + e exactly (no underflow).
+template <bool kFma>
+inline void product_parts(double a, double b, double& p, double& e) {
+  if constexpr (kFma) {
+    p = a * b;
+    e = __builtin_fma(a, b, -p);
+  } else {
+    two_product(a, b, p, e);
+  }
+}
+
+template <bool kFma>
+[[gnu::always_inline]] inline bool exact_differences_sign(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                                   const Eigen::Vector3d& d, int& sign) {
+  // The nine differences a-d, b-d, c-d; only exact ones go on (Two-Sum's
+  // error is zero exactly when the rounded difference is the difference).
+  double v[9];
+  const Eigen::Vector3d* rows[3] = {&a, &b, &c};
+  for (int r = 0; r < 3; ++r)
+    for (int k = 0; k < 3; ++k) {
+      double err;
+      two_sum((*rows[r])[k], -d[k], v[3 * r + k], err);
+      if (err != 0.0) return false;
+    }
+  // det[a-d, b-d, c-d] by Leibniz: six signed products x y z of exact
+  // differences (the sign put on x: negation is exact). Each is four doubles
+  // exactly: y z = p + e, x p = P + E, x e = F + G, so the determinant is
+  // the exact sum of t[24]. (This file is compiled without contraction of
+  // a product into a later sum: every rounding here is the one written.)
+  enum { AX, AY, AZ, BX, BY, BZ, CX, CY, CZ };
+  static constexpr int kTerms[6][3] = {{AX, BY, CZ}, {AX, BZ, CY}, {BX, CY, AZ},
+                                       {BX, CZ, AY}, {CX, AY, BZ}, {CX, AZ, BY}};
+  double t[24];
+  double parts = 0.0;  // A: the parts' magnitudes summed
+  for (int i = 0; i < 6; ++i) {
+    const double x = i % 2 == 0 ? v[kTerms[i][0]] : -v[kTerms[i][0]];
+    double p, e;
+    product_parts<kFma>(v[kTerms[i][1]], v[kTerms[i][2]], p, e);
+    product_parts<kFma>(x, p, t[4 * i], t[4 * i + 1]);
+    product_parts<kFma>(x, e, t[4 * i + 2], t[4 * i + 3]);
+    for (int k = 0; k < 4; ++k) parts += std::fabs(t[4 * i + k]);
+  }
+  // Sum2 (Ogita, Rump and Oishi 2005, Algorithm 4.4): VecSum's chain of
+  // Two-Sums leaves the rounded sum in t[23] and each step's error in the
+  // slot before, the exact sum unchanged; res is t[23] plus the errors
+  // summed. Their Proposition 4.5 (which holds with underflow too): for n
+  // parts, |res - det| <= eps |det| + gamma(n-1)^2 S, gamma(m) = m eps /
+  // (1 - m eps). With |det| <= |res| + err that gives err (1 - eps) <=
+  // eps |res| + gamma(23)^2 S, so err < |res| (the sign is res's) whenever
+  // |res| (1 - 2 eps) > gamma(23)^2 S; and gamma(23)^2 S (1 - 2 eps)^-1 <=
+  // 529 eps^2 (1 + 100 eps) A < 2^-96 A.
+  for (int i = 1; i < 24; ++i) two_sum(t[i - 1], t[i], t[i], t[i - 1]);
+  double errors = 0.0, error_size = 0.0;
+  for (int i = 0; i < 23; ++i) {
+    errors += t[i];
+    error_size += std::fabs(t[i]);
+  }
+  // orient3d's sign is the opposite of det[a-d, b-d, c-d]'s.
+  if (error_size == 0.0) {  // no error left: the determinant is t[23], zero included
+    sign = t[23] > 0.0 ? -1 : (t[23] < 0.0 ? 1 : 0);
+    return true;
+  }
+  if (parts < kSmallestParts) return false;
+  const double res = t[23] + errors;
+  if (std::fabs(res) > kSum2Bound * parts) {
+    sign = res > 0.0 ? -1 : 1;
+    return true;
+  }
+  // Undecided: mostly an exact zero (coplanar points), which no bound can
+  // certify. Further VecSum passes (each leaves the exact sum unchanged)
+  // usually cancel the errors to nothing; or they become smaller than the
+  // rounded sum, whose sign is then the determinant's: with E the errors'
+  // magnitudes computed (E >= S (1 - eps)^22, partial sums normal or adding
+  // exactly), |t[23]| > E (1 + 2^-47) rounded is above S.
+  for (int pass = 0; pass < kMorePasses; ++pass) {
+    for (int i = 1; i < 24; ++i) two_sum(t[i - 1], t[i], t[i], t[i - 1]);
+    error_size = 0.0;
+    for (int i = 0; i < 23; ++i) error_size += std::fabs(t[i]);
+    if (error_size == 0.0) {
+      sign = t[23] > 0.0 ? -1 : (t[23] < 0.0 ? 1 : 0);
+      return true;
+    }
+    if (error_size < kSmallestCertified) return false;
+    if (std::fabs(t[23]) > error_size * (1.0 + 64.0 * kEpsilon)) {
+      sign = t[23] > 0.0 ? -1 : 1;
+      return true;
+    }
+  }
+  return false;
+}
+
+// The stage compiled for processors with fused multiply-add (chosen at run
+// time; the other build of it is exact too, with Dekker's products).
+__attribute__((target("fma"))) bool exact_differences_sign_fma(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                                               const Eigen::Vector3d& c, const Eigen::Vector3d& d,
+                                                               int& sign) {
+  return exact_differences_sign<true>(a, b, c, d, sign);
+}
+
 }  // namespace
+
+bool orient3d_exact_differences(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                                const Eigen::Vector3d& d, int& sign, FusedMultiplyAdd fma) {
+  if (fma == FusedMultiplyAdd::IfAvailable && __builtin_cpu_supports("fma"))
+    return exact_differences_sign_fma(a, b, c, d, sign);
+  return exact_differences_sign<false>(a, b, c, d, sign);
+}
 
 int orient3d_exact(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                    const Eigen::Vector3d& d) {
@@ -191,6 +312,8 @@ int orient3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Ve
   // This is the common degenerate case in scenes (faces in an axis-aligned
   // plane, points sharing coordinates), and it spares the expansion path.
   if (every_term_has_zero_factor(adx, ady, adz, bdx, bdy, bdz, cdx, cdy, cdz)) return 0;
+  int sign = 0;
+  if (orient3d_exact_differences(a, b, c, d, sign)) return sign;
   return orient3d_exact(a, b, c, d);
 }
 

@@ -19,10 +19,15 @@
 /// Requires IEEE-754 round-to-nearest-even doubles without -ffast-math.
 /// Between the filter and the expansions, an exact shortcut returns 0 when
 /// every term of the determinant has an exactly zero coordinate difference
-/// (e.g. four points in one axis-aligned plane).
+/// (e.g. four points in one axis-aligned plane); then, when the nine
+/// coordinate differences are exact, an accurate sum of the determinant's
+/// 24 exact parts with a proven error bound decides most of the rest
+/// (orient3d_exact_differences).
 /// Cost: ~20 flops when the filter decides, a few more when the shortcut
-/// does; a few hundred when the expansions must (exactly coplanar input in a
-/// plane that is not axis aligned, or a determinant too small for the filter).
+/// does; a few hundred, branch-free, when the summation passes do; a few
+/// hundred with data-dependent branches when the expansions must (inexact
+/// differences with a determinant too small for the filter, or a sign the
+/// passes leave open).
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -32,6 +37,27 @@ namespace tcb {
 /// Sign (+1, 0, -1) of det[b-a, c-a, d-a]; exact. See the file comment.
 int orient3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
              const Eigen::Vector3d& d);
+
+/// Whether orient3d_exact_differences() may use the processor's fused
+/// multiply-add (two instructions a product's exact parts; Dekker's
+/// splitting takes about 17). The answer is the same either way; Never is
+/// for tests of the other build.
+enum class FusedMultiplyAdd { IfAvailable, Never };
+
+/// orient3d's stage between the shortcut and the expansions, exposed so
+/// tests can check it against orient3d_exact. When the nine differences
+/// a-d, b-d, c-d are exact doubles (as for nearby points: Sterbenz), the
+/// determinant is the exact sum of 24 doubles (Two-Product twice per
+/// Leibniz term). Their sum by Sum2 (Ogita, Rump and Oishi 2005) with its
+/// proven error bound decides the sign when the determinant is not below
+/// about 2^-96 of the terms' magnitudes; else up to two more error-free
+/// passes (VecSum) try to certify it, zero included. Returns whether it
+/// decided, and then sets `sign` to orient3d's sign (exactly); false when a
+/// difference is inexact or the sign stays open. Same range contract as
+/// orient3d.
+bool orient3d_exact_differences(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                                const Eigen::Vector3d& d, int& sign,
+                                FusedMultiplyAdd fma = FusedMultiplyAdd::IfAvailable);
 
 /// The same sign evaluated only by the exact expansion path (no filter, no
 /// shortcut). Exposed so tests can check the filter and shortcut against it.

@@ -12,6 +12,7 @@ using tcb::cross_product_sign;
 using tcb::cross_product_sign_exact;
 using tcb::orient3d;
 using tcb::orient3d_exact;
+using tcb::orient3d_exact_differences;
 using V = Eigen::Vector3d;
 
 namespace {
@@ -234,6 +235,96 @@ TEST_CASE("orient3d: the zero-difference shortcut agrees with the exact path", "
   // Cases where plain floating point is wrong although some differences are
   // exactly zero: the filter cannot decide those, and the shortcut must not.
   CHECK(filter_fails_shortcut_must_not > kCases / 1000);
+}
+
+TEST_CASE("orient3d: the summation stage decides only exact differences, and then exactly, on a million cases",
+          "[orient3d]") {
+  // The stage between the shortcut and the expansions, called alone on the
+  // inputs that reach it, a million near-coplanar cases with exact
+  // differences, a quarter exactly coplanar: half integer points at scales
+  // 2^-60 .. 2^60, one unit off the plane (checked against the 128-bit
+  // reference too); half doubles of one binade (a, b, c in [1, 2): exact
+  // differences, Sterbenz) with d computed in floating point on their plane,
+  // then moved 0 .. 2 ulps a coordinate. Every decision must be the exact
+  // path's; the build with fused multiply-add and the one without must
+  // decide alike (their parts are the same doubles). Most must be decided,
+  // zeros included (or the stage is not what orient3d runs on such input),
+  // and differences that round must never be.
+  using tcb::FusedMultiplyAdd;
+  std::mt19937_64 rng(20261128);
+  std::uniform_int_distribution<std::int64_t> coord(-(std::int64_t(1) << 30), std::int64_t(1) << 30);
+  std::uniform_int_distribution<std::int64_t> small(-4, 4);
+  std::uniform_int_distribution<int> nudge(-1, 1), ulps(-2, 2), exponent(-60, 60), kind(0, 3);
+  std::uniform_real_distribution<double> unit(1.0, 2.0), w(-0.4, 0.4);
+  constexpr int kCases = 1000000;
+  int decided = 0, decided_zero = 0, zero = 0, wrong = 0, builds_differ = 0, reference_wrong = 0;
+  for (int i = 0; i < kCases; ++i) {
+    const bool coplanar = kind(rng) == 0;
+    V a, b, c, d;
+    int expected = 2;  // the 128-bit reference, for integer points
+    if (i % 2 == 0) {
+      std::array<std::int64_t, 12> p{};
+      for (int k = 0; k < 9; ++k) p[k] = coord(rng);
+      const std::int64_t s = small(rng), t = small(rng);
+      for (int k = 0; k < 3; ++k)
+        p[9 + k] = p[k] + s * (p[3 + k] - p[k]) + t * (p[6 + k] - p[k]) + (coplanar ? 0 : nudge(rng));
+      expected = reference_sign(p);
+      const double f = std::ldexp(1.0, exponent(rng));
+      a = V(p[0] * f, p[1] * f, p[2] * f), b = V(p[3] * f, p[4] * f, p[5] * f);
+      c = V(p[6] * f, p[7] * f, p[8] * f), d = V(p[9] * f, p[10] * f, p[11] * f);
+    } else {
+      a = V(unit(rng), unit(rng), unit(rng)), b = V(unit(rng), unit(rng), unit(rng)),
+      c = V(unit(rng), unit(rng), unit(rng));
+      // d = (a + b + c) / 3 moved along the plane, inside [1, 2) as well.
+      d = (a + b + c) / 3.0 + w(rng) * (b - a) + w(rng) * (c - a);
+      if (coplanar) d = a;  // the plainest exact zero: a repeated point
+      for (int k = 0; k < 3 && !coplanar; ++k)
+        for (int n = ulps(rng); n != 0; n += n > 0 ? -1 : 1) d[k] = std::nextafter(d[k], n > 0 ? 2.0 : 1.0);
+      if ((d.array() < 1.0).any() || (d.array() >= 2.0).any()) continue;
+    }
+    const int exact = orient3d_exact(a, b, c, d);
+    zero += exact == 0;
+    if (expected != 2) reference_wrong += exact != expected;
+    int sign = 2, sign_without = 2;
+    const bool decides = orient3d_exact_differences(a, b, c, d, sign);
+    const bool decides_without = orient3d_exact_differences(a, b, c, d, sign_without, FusedMultiplyAdd::Never);
+    builds_differ += decides != decides_without || (decides && sign != sign_without);
+    if (!decides) continue;
+    ++decided;
+    decided_zero += sign == 0;
+    wrong += sign != exact;
+  }
+  INFO("decided " << decided << ", zeros " << zero << " of which decided " << decided_zero);
+  REQUIRE(wrong == 0);
+  REQUIRE(reference_wrong == 0);
+  REQUIRE(builds_differ == 0);
+  CHECK(zero > kCases / 5);
+  CHECK(decided > kCases * 9 / 10);
+  CHECK(decided_zero > zero * 9 / 10);
+  // Inexact differences: 2^52 + 0.5 is not a double, so a - d rounds.
+  const V big(0x1p52, 1.0, 1.0), half(-0.5, 0.0, 0.0);
+  int sign = 2;
+  CHECK_FALSE(orient3d_exact_differences(half, V(0, 1, 0), V(0, 0, 1), big, sign));
+  CHECK(sign == 2);
+  // At the ends of the range contract (differences down to 2^-299, about
+  // 1e-90, and points up to 2^290): still exact, and still deciding.
+  for (const int e : {-299, 260}) {
+    INFO("scale 2^" << e);
+    int decided_here = 0;
+    for (int i = 0; i < 100000; ++i) {
+      std::array<std::int64_t, 12> p{};
+      for (int k = 0; k < 9; ++k) p[k] = coord(rng);
+      const std::int64_t s = small(rng), t = small(rng);
+      for (int k = 0; k < 3; ++k) p[9 + k] = p[k] + s * (p[3 + k] - p[k]) + t * (p[6 + k] - p[k]) + nudge(rng);
+      const double f = std::ldexp(1.0, e);
+      const V a(p[0] * f, p[1] * f, p[2] * f), b(p[3] * f, p[4] * f, p[5] * f),
+          c(p[6] * f, p[7] * f, p[8] * f), d(p[9] * f, p[10] * f, p[11] * f);
+      if (!orient3d_exact_differences(a, b, c, d, sign)) continue;
+      ++decided_here;
+      REQUIRE(sign == reference_sign(p));
+    }
+    CHECK(decided_here > 50000);
+  }
 }
 
 TEST_CASE("cross_product_sign: filter and shortcut agree with the exact path on near-degenerate input",
