@@ -37,14 +37,19 @@ const std::vector<V>& near_coplanar() {
       for (int k = 0; k < 3; ++k)
         for (int n = ulps(rng); n != 0; n += n > 0 ? -1 : 1) d[k] = std::nextafter(d[k], n > 0 ? 2.0 : 1.0);
       if ((d.array() < 1.0).any() || (d.array() >= 2.0).any()) continue;
-      // Only what orient3d's filter leaves open: its determinant against
-      // its error bound, as orient3d computes them (stage A's bound).
-      const V ad = a - d, bd = b - d, cd = c - d;
-      const double det = ad.dot(bd.cross(cd));
-      const double permanent = (std::fabs(bd.y() * cd.z()) + std::fabs(bd.z() * cd.y())) * std::fabs(ad.x()) +
-                               (std::fabs(cd.y() * ad.z()) + std::fabs(cd.z() * ad.y())) * std::fabs(bd.x()) +
-                               (std::fabs(ad.y() * bd.z()) + std::fabs(ad.z() * bd.y())) * std::fabs(cd.x());
-      if (std::fabs(det) > 8.0 * 0x1p-53 * permanent) continue;
+      // Only what orient3d's filter leaves open: its determinant and error
+      // bound (Shewchuk's stage A), in orient3d's order of operations.
+      const double adx = a.x() - d.x(), ady = a.y() - d.y(), adz = a.z() - d.z();
+      const double bdx = b.x() - d.x(), bdy = b.y() - d.y(), bdz = b.z() - d.z();
+      const double cdx = c.x() - d.x(), cdy = c.y() - d.y(), cdz = c.z() - d.z();
+      const double bdycdz = bdy * cdz, bdzcdy = bdz * cdy, cdyadz = cdy * adz, cdzady = cdz * ady;
+      const double adybdz = ady * bdz, adzbdy = adz * bdy;
+      const double det = adx * (bdycdz - bdzcdy) + bdx * (cdyadz - cdzady) + cdx * (adybdz - adzbdy);
+      const double permanent = (std::fabs(bdycdz) + std::fabs(bdzcdy)) * std::fabs(adx) +
+                               (std::fabs(cdyadz) + std::fabs(cdzady)) * std::fabs(bdx) +
+                               (std::fabs(adybdz) + std::fabs(adzbdy)) * std::fabs(cdx);
+      const double eps = 0x1p-53;
+      if (std::fabs(det) > (7.0 + 56.0 * eps) * eps * permanent) continue;
       p.insert(p.end(), {a, b, c, d});
     }
     return p;

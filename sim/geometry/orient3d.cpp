@@ -145,21 +145,28 @@ bool every_term_has_zero_factor(double ax, double ay, double az, double bx, doub
 }
 
 // The summation stage's certificate: with S the sum of the 24 parts'
-// magnitudes and A that sum as computed (S <= A (1 + 24 eps)), Sum2's error
-// is below 530 eps^2 A (1 + 100 eps) (see the stage), under 2^10 eps^2 A.
+// magnitudes and A that sum as computed (S <= A (1 + 24 eps)), the sign of
+// Sum2's result is the determinant's once |res| exceeds gamma(23)^2 S /
+// (1 - 2 eps), which is below 529 eps^2 (1 + 100 eps) A (see the stage),
+// under 2^10 eps^2 A.
 constexpr double kSum2Bound = 0x1p-96;  // 2^10 eps^2
-// A smallest A for which 2^-96 A is a normal double (the product is then
-// exact: a power of two).
+// Below this A the certificate is not tried: 2^-96 A is then normal, so the
+// product is exact (a power of two). 2^-926 would do; this keeps a margin.
 constexpr double kSmallestParts = 0x1p-900;
 
 // After Sum2, up to this many further VecSum passes (for exact zeros).
 constexpr int kMorePasses = 2;
-// The smallest error sum the passes' certificate trusts: with it (and so
-// with every partial sum at least this, or adding exactly below the normal
-// range) the product E (1 + 2^-47) is normal and rounds relatively.
+// The smallest error sum the passes' certificate trusts: the product
+// E (1 + 2^-47) is then normal and rounds relatively (the partial sums need
+// nothing: below the normal range they add exactly).
 constexpr double kSmallestCertified = 0x1p-1000;
 
-// Two-Product with a fused multiply-add: a b = p + e exactly (no underflow).
+// Two-Product, a b = p + e exactly: with a fused multiply-add, or Dekker's
+// splitting. Exact when a b is a multiple of 2^-1074 (its lowest bit
+// representable) and does not overflow: within orient3d's range contract
+// every coordinate, so every difference, is a multiple of 2^-352 (0 or of
+// magnitude at least about 1e-90), and every product of three of them, and
+// each of its parts, a multiple of 2^-1056.
 template <bool kFma>
 inline void product_parts(double a, double b, double& p, double& e) {
   if constexpr (kFma) {
@@ -250,20 +257,26 @@ template <bool kFma>
   return false;
 }
 
-// The stage compiled for processors with fused multiply-add (chosen at run
-// time; the other build of it is exact too, with Dekker's products).
+#if defined(__x86_64__) || defined(__i386__)
+// The stage compiled for x86 processors with fused multiply-add (chosen at
+// run time; the other build of it is exact too, with Dekker's products).
 __attribute__((target("fma"))) bool exact_differences_sign_fma(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                                                const Eigen::Vector3d& c, const Eigen::Vector3d& d,
                                                                int& sign) {
   return exact_differences_sign<true>(a, b, c, d, sign);
 }
+#endif
 
 }  // namespace
 
 bool orient3d_exact_differences(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                                 const Eigen::Vector3d& d, int& sign, FusedMultiplyAdd fma) {
+#if defined(__x86_64__) || defined(__i386__)
   if (fma == FusedMultiplyAdd::IfAvailable && __builtin_cpu_supports("fma"))
     return exact_differences_sign_fma(a, b, c, d, sign);
+#else
+  (void)fma;  // elsewhere Dekker's products (a target's own FMA flags would also do)
+#endif
   return exact_differences_sign<false>(a, b, c, d, sign);
 }
 

@@ -15,7 +15,9 @@
 ///
 /// Contract: exact when no intermediate product over- or underflows, i.e. for
 /// finite coordinates whose magnitudes are 0 or lie within about [1e-90, 1e90]
-/// (products of three coordinate differences must stay normal doubles).
+/// (then every coordinate difference is a multiple of 2^-352, every product
+/// of three and each of its exact parts a multiple of 2^-1056, above the
+/// smallest subnormal, and none overflows).
 /// Requires IEEE-754 round-to-nearest-even doubles without -ffast-math.
 /// Between the filter and the expansions, an exact shortcut returns 0 when
 /// every term of the determinant has an exactly zero coordinate difference
@@ -24,10 +26,10 @@
 /// 24 exact parts with a proven error bound decides most of the rest
 /// (orient3d_exact_differences).
 /// Cost: ~20 flops when the filter decides, a few more when the shortcut
-/// does; a few hundred, branch-free, when the summation passes do; a few
-/// hundred with data-dependent branches when the expansions must (inexact
-/// differences with a determinant too small for the filter, or a sign the
-/// passes leave open).
+/// does; a few hundred, with a dozen well-predicted exits, when the
+/// summation stage does; a few hundred with data-dependent branches when the
+/// expansions must (inexact differences with a determinant too small for
+/// the filter, or a sign the stage leaves open).
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -40,8 +42,9 @@ int orient3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Ve
 
 /// Whether orient3d_exact_differences() may use the processor's fused
 /// multiply-add (two instructions a product's exact parts; Dekker's
-/// splitting takes about 17). The answer is the same either way; Never is
-/// for tests of the other build.
+/// splitting takes about 17): on x86 when the processor has it, elsewhere
+/// never. The answer is the same either way; Never is for tests of the
+/// other build.
 enum class FusedMultiplyAdd { IfAvailable, Never };
 
 /// orient3d's stage between the shortcut and the expansions, exposed so

@@ -112,6 +112,7 @@ TEST_CASE("threads change neither contacts, depths nor any task's work, one task
     // budget, so nothing stops between them), each still a task of its own.
     using Tally = std::tuple<std::int64_t, std::uint64_t, std::uint64_t, std::array<std::uint64_t, kCostStages>>;
     Tally serial_tally;
+    std::vector<Contact> serial_whole_contacts;
     for (const int threads : {1, 2, 3}) {
       INFO("threads " << threads);
       World w = build_world(scene);  // never stepped: every contact is detected at this step's positions
@@ -143,6 +144,7 @@ TEST_CASE("threads change neither contacts, depths nor any task's work, one task
         serial_single = found(cycle);
         serial_whole = found(whole);
         serial_tally = tally;
+        serial_whole_contacts = whole.contacts();
         REQUIRE(!serial_single.empty());
         CHECK(serial_single == serial_whole);
         CHECK(std::count_if(serial_single.begin(), serial_single.end(), [](const auto& f) {
@@ -154,6 +156,7 @@ TEST_CASE("threads change neither contacts, depths nor any task's work, one task
         CHECK(found(cycle) == serial_single);
         CHECK(found(whole) == serial_whole);
         CHECK(tally == serial_tally);
+        CHECK(same_contacts(whole.contacts(), serial_whole_contacts));  // in list order
         // Under a wall budget (a clock ticking 1 ms a reading, 5 ms a call)
         // batches are sized by time, so where calls stop differs; at fixed
         // positions the contacts may not.
