@@ -15,6 +15,8 @@
 //   BM_OursKeptTable: ours with the table kept between iterations and
 //             refreshed (not the paper's schedule; see its comment).
 //   BM_QueryClasses: ours alone, our queries' cost by kind of point.
+//   BM_PeersPaired: the four side by side in every iteration (the ratios to
+//             quote: see its comment).
 // Scenes: /0 dog.mesh (scaled to 1.34 m) against a copy shifted by half its
 // height (the collision-cycle benchmark's pair); /1 plates20 at the origin.
 // Each iteration first deforms the second object (a small wave, different per
@@ -40,6 +42,7 @@
 #include <fcl/geometry/shape/sphere.h>
 #include <fcl/narrowphase/collision.h>
 
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -211,139 +214,213 @@ void BM_QueryClasses(benchmark::State& state) {
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::pair<std::int32_t, std::int32_t>>;
 
+// CGAL's answer at the world's current positions: the vertices inside some
+// tet of another object.
+std::int64_t cgal_inside(const World& world) {
+  std::vector<Box> points, tets;
+  std::vector<std::vector<K::Point_3>> x(world.bodies.size());
+  for (std::int32_t b = 0; b < static_cast<std::int32_t>(world.bodies.size()); ++b) {
+    const Body& body = world.bodies[b];
+    for (const Vec3& p : body.x_m) x[b].emplace_back(p.x(), p.y(), p.z());
+    for (std::int32_t v = 0; v < static_cast<std::int32_t>(x[b].size()); ++v)
+      points.emplace_back(x[b][v].bbox(), std::make_pair(b, v));
+    for (std::int32_t t = 0; t < static_cast<std::int32_t>(body.mesh->tet_count()); ++t) {
+      const Tet& q = body.mesh->tets[t];
+      tets.emplace_back(x[b][q[0]].bbox() + x[b][q[1]].bbox() + x[b][q[2]].bbox() + x[b][q[3]].bbox(),
+                        std::make_pair(b, t));
+    }
+  }
+  std::vector<std::vector<char>> found(world.bodies.size());
+  for (std::size_t b = 0; b < world.bodies.size(); ++b) found[b].assign(x[b].size(), 0);
+  CGAL::box_intersection_d(points.begin(), points.end(), tets.begin(), tets.end(), [&](const Box& p, const Box& t) {
+    const auto [pb, pv] = p.info();
+    const auto [tb, ti] = t.info();
+    if (pb == tb || found[pb][pv]) return;
+    const Tet& q = world.bodies[tb].mesh->tets[ti];
+    const K::Point_3* c[4] = {&x[tb][q[0]], &x[tb][q[1]], &x[tb][q[2]], &x[tb][q[3]]};
+    const CGAL::Orientation o = CGAL::orientation(*c[0], *c[1], *c[2], *c[3]);
+    if (o == CGAL::COPLANAR) return;
+    const K::Point_3& r = x[pb][pv];
+    if (CGAL::orientation(r, *c[1], *c[2], *c[3]) == -o || CGAL::orientation(*c[0], r, *c[2], *c[3]) == -o ||
+        CGAL::orientation(*c[0], *c[1], r, *c[3]) == -o || CGAL::orientation(*c[0], *c[1], *c[2], r) == -o)
+      return;
+    found[pb][pv] = 1;
+  });
+  std::int64_t inside = 0;
+  for (const auto& f : found) inside += std::count(f.begin(), f.end(), 1);
+  return inside;
+}
+
 void BM_Cgal(benchmark::State& state) {
   World world = scene_world(static_cast<int>(state.range(0)));
   const std::vector<Vec3> rest = world.bodies.back().x_m;
-  std::int64_t iteration = 0, inside = 0, first_inside = -1;
+  std::int64_t iteration = 0, first_inside = -1;
   for (auto _ : state) {
     state.PauseTiming();
     deform(world, rest, iteration++);
     state.ResumeTiming();
-    std::vector<Box> points, tets;
-    std::vector<std::vector<K::Point_3>> x(world.bodies.size());
-    for (std::int32_t b = 0; b < static_cast<std::int32_t>(world.bodies.size()); ++b) {
-      const Body& body = world.bodies[b];
-      for (const Vec3& p : body.x_m) x[b].emplace_back(p.x(), p.y(), p.z());
-      for (std::int32_t v = 0; v < static_cast<std::int32_t>(x[b].size()); ++v)
-        points.emplace_back(x[b][v].bbox(), std::make_pair(b, v));
-      for (std::int32_t t = 0; t < static_cast<std::int32_t>(body.mesh->tet_count()); ++t) {
-        const Tet& q = body.mesh->tets[t];
-        tets.emplace_back(x[b][q[0]].bbox() + x[b][q[1]].bbox() + x[b][q[2]].bbox() + x[b][q[3]].bbox(),
-                          std::make_pair(b, t));
-      }
-    }
-    std::vector<std::vector<char>> found(world.bodies.size());
-    for (std::size_t b = 0; b < world.bodies.size(); ++b) found[b].assign(x[b].size(), 0);
-    CGAL::box_intersection_d(points.begin(), points.end(), tets.begin(), tets.end(), [&](const Box& p, const Box& t) {
-      const auto [pb, pv] = p.info();
-      const auto [tb, ti] = t.info();
-      if (pb == tb || found[pb][pv]) return;
-      const Tet& q = world.bodies[tb].mesh->tets[ti];
-      const K::Point_3* c[4] = {&x[tb][q[0]], &x[tb][q[1]], &x[tb][q[2]], &x[tb][q[3]]};
-      const CGAL::Orientation o = CGAL::orientation(*c[0], *c[1], *c[2], *c[3]);
-      if (o == CGAL::COPLANAR) return;
-      const K::Point_3& r = x[pb][pv];
-      if (CGAL::orientation(r, *c[1], *c[2], *c[3]) == -o || CGAL::orientation(*c[0], r, *c[2], *c[3]) == -o ||
-          CGAL::orientation(*c[0], *c[1], r, *c[3]) == -o || CGAL::orientation(*c[0], *c[1], *c[2], r) == -o)
-        return;
-      found[pb][pv] = 1;
-    });
-    inside = 0;
-    for (const auto& f : found) inside += std::count(f.begin(), f.end(), 1);
+    const std::int64_t inside = cgal_inside(world);
     if (first_inside < 0) first_inside = inside;
   }
   state.counters["inside"] = static_cast<double>(first_inside);
 }
 
-struct FclScene {
-  std::vector<std::shared_ptr<std::vector<fcl::Vector3d>>> tet_vertices;
-  std::vector<std::shared_ptr<fcl::Convexd>> tet_shapes;
-  std::vector<std::unique_ptr<fcl::CollisionObjectd>> tet_objects, point_objects;
-  std::vector<std::pair<std::int32_t, std::int32_t>> tet_id, point_id;  // (body, index) per object
-  fcl::DynamicAABBTreeCollisionManagerd tets, points;
-};
-
-void BM_Fcl(benchmark::State& state) {
-  World world = scene_world(static_cast<int>(state.range(0)));
-  const std::vector<Vec3> rest = world.bodies.back().x_m;
-  FclScene s;
-  const auto faces = std::make_shared<std::vector<int>>(std::vector<int>{3, 0, 2, 1, 3, 0, 1, 3, 3, 0, 3, 2, 3, 1, 2, 3});
-  const auto sphere = std::make_shared<fcl::Sphered>(0.0);
-  for (std::int32_t b = 0; b < static_cast<std::int32_t>(world.bodies.size()); ++b) {
-    const Body& body = world.bodies[b];
-    for (std::int32_t t = 0; t < static_cast<std::int32_t>(body.mesh->tet_count()); ++t) {
-      const Tet& q = body.mesh->tets[t];
-      auto vertices = std::make_shared<std::vector<fcl::Vector3d>>();
-      for (int k = 0; k < 4; ++k) vertices->push_back(body.x_m[q[k]]);
-      auto shape = std::make_shared<fcl::Convexd>(vertices, 4, faces);
-      s.tet_vertices.push_back(vertices);
-      s.tet_shapes.push_back(shape);
-      s.tet_objects.push_back(std::make_unique<fcl::CollisionObjectd>(shape));
-      s.tet_id.emplace_back(b, t);
+// FCL's managers over a world's tets (a Convex each) and vertices (a
+// zero-radius Sphere each), set up once (untimed, like a user's scene
+// load); inside() updates every object to the world's current positions,
+// as a deforming scene must, and answers the query.
+class FclPeer {
+ public:
+  explicit FclPeer(const World& world) {
+    const auto faces =
+        std::make_shared<std::vector<int>>(std::vector<int>{3, 0, 2, 1, 3, 0, 1, 3, 3, 0, 3, 2, 3, 1, 2, 3});
+    const auto sphere = std::make_shared<fcl::Sphered>(0.0);
+    for (std::int32_t b = 0; b < static_cast<std::int32_t>(world.bodies.size()); ++b) {
+      const Body& body = world.bodies[b];
+      for (std::int32_t t = 0; t < static_cast<std::int32_t>(body.mesh->tet_count()); ++t) {
+        const Tet& q = body.mesh->tets[t];
+        auto vertices = std::make_shared<std::vector<fcl::Vector3d>>();
+        for (int k = 0; k < 4; ++k) vertices->push_back(body.x_m[q[k]]);
+        auto shape = std::make_shared<fcl::Convexd>(vertices, 4, faces);
+        m_tet_vertices.push_back(vertices);
+        m_tet_shapes.push_back(shape);
+        m_tet_objects.push_back(std::make_unique<fcl::CollisionObjectd>(shape));
+        m_tet_id.emplace_back(b, t);
+      }
+      for (std::int32_t v = 0; v < static_cast<std::int32_t>(body.x_m.size()); ++v) {
+        fcl::Transform3d at = fcl::Transform3d::Identity();
+        at.translation() = body.x_m[v];
+        m_point_objects.push_back(std::make_unique<fcl::CollisionObjectd>(sphere, at));
+        m_point_id.emplace_back(b, v);
+      }
     }
-    for (std::int32_t v = 0; v < static_cast<std::int32_t>(body.x_m.size()); ++v) {
-      fcl::Transform3d at = fcl::Transform3d::Identity();
-      at.translation() = body.x_m[v];
-      s.point_objects.push_back(std::make_unique<fcl::CollisionObjectd>(sphere, at));
-      s.point_id.emplace_back(b, v);
-    }
+    for (std::size_t i = 0; i < m_tet_objects.size(); ++i) m_tet_objects[i]->setUserData(&m_tet_id[i]);
+    for (std::size_t i = 0; i < m_point_objects.size(); ++i) m_point_objects[i]->setUserData(&m_point_id[i]);
+    std::vector<fcl::CollisionObjectd*> raw;
+    for (auto& o : m_tet_objects) raw.push_back(o.get());
+    m_tets.registerObjects(raw);
+    raw.clear();
+    for (auto& o : m_point_objects) raw.push_back(o.get());
+    m_points.registerObjects(raw);
+    m_tets.setup();
+    m_points.setup();
   }
-  for (std::size_t i = 0; i < s.tet_objects.size(); ++i) s.tet_objects[i]->setUserData(&s.tet_id[i]);
-  for (std::size_t i = 0; i < s.point_objects.size(); ++i) s.point_objects[i]->setUserData(&s.point_id[i]);
-  std::vector<fcl::CollisionObjectd*> raw;
-  for (auto& o : s.tet_objects) raw.push_back(o.get());
-  s.tets.registerObjects(raw);
-  raw.clear();
-  for (auto& o : s.point_objects) raw.push_back(o.get());
-  s.points.registerObjects(raw);
-  s.tets.setup();
-  s.points.setup();
 
-  struct Data {
-    std::vector<std::vector<char>>* found;
-  };
-  std::vector<std::vector<char>> found(world.bodies.size());
-  std::int64_t iteration = 0, inside = 0, first_inside = -1;
-  for (auto _ : state) {
-    state.PauseTiming();
-    deform(world, rest, iteration++);
-    state.ResumeTiming();
-    // Update every object to the current positions, as a deforming scene must.
-    for (std::size_t i = 0; i < s.tet_objects.size(); ++i) {
-      const auto [b, t] = s.tet_id[i];
+  std::int64_t inside(const World& world) {
+    for (std::size_t i = 0; i < m_tet_objects.size(); ++i) {
+      const auto [b, t] = m_tet_id[i];
       const Tet& q = world.bodies[b].mesh->tets[t];
-      for (int k = 0; k < 4; ++k) (*s.tet_vertices[i])[k] = world.bodies[b].x_m[q[k]];
-      s.tet_shapes[i]->computeLocalAABB();
-      s.tet_objects[i]->computeAABB();
+      for (int k = 0; k < 4; ++k) (*m_tet_vertices[i])[k] = world.bodies[b].x_m[q[k]];
+      m_tet_shapes[i]->computeLocalAABB();
+      m_tet_objects[i]->computeAABB();
     }
-    for (std::size_t i = 0; i < s.point_objects.size(); ++i) {
-      const auto [b, v] = s.point_id[i];
-      s.point_objects[i]->setTranslation(world.bodies[b].x_m[v]);
-      s.point_objects[i]->computeAABB();
+    for (std::size_t i = 0; i < m_point_objects.size(); ++i) {
+      const auto [b, v] = m_point_id[i];
+      m_point_objects[i]->setTranslation(world.bodies[b].x_m[v]);
+      m_point_objects[i]->computeAABB();
     }
-    s.tets.update();
-    s.points.update();
+    m_tets.update();
+    m_points.update();
+    std::vector<std::vector<char>> found(world.bodies.size());
     for (std::size_t b = 0; b < world.bodies.size(); ++b) found[b].assign(world.bodies[b].x_m.size(), 0);
-    Data data{&found};
-    s.tets.collide(&s.points, &data, [](fcl::CollisionObjectd* o1, fcl::CollisionObjectd* o2, void* raw_data) {
-      auto* d = static_cast<Data*>(raw_data);
+    m_tets.collide(&m_points, &found, [](fcl::CollisionObjectd* o1, fcl::CollisionObjectd* o2, void* data) {
+      auto& seen = *static_cast<std::vector<std::vector<char>>*>(data);
       const auto* a = static_cast<const std::pair<std::int32_t, std::int32_t>*>(o1->getUserData());
       const auto* p = static_cast<const std::pair<std::int32_t, std::int32_t>*>(o2->getUserData());
       if (o2->collisionGeometry()->getNodeType() != fcl::GEOM_SPHERE) {  // the managers' order is not promised
         std::swap(a, p);
         std::swap(o1, o2);
       }
-      if (a->first == p->first || (*d->found)[p->first][p->second]) return false;
+      if (a->first == p->first || seen[p->first][p->second]) return false;
       fcl::CollisionRequestd request;
       fcl::CollisionResultd result;
-      if (fcl::collide(o1, o2, request, result) > 0) (*d->found)[p->first][p->second] = 1;
+      if (fcl::collide(o1, o2, request, result) > 0) seen[p->first][p->second] = 1;
       return false;  // keep going
     });
-    inside = 0;
+    std::int64_t inside = 0;
     for (const auto& f : found) inside += std::count(f.begin(), f.end(), 1);
+    return inside;
+  }
+
+ private:
+  std::vector<std::shared_ptr<std::vector<fcl::Vector3d>>> m_tet_vertices;
+  std::vector<std::shared_ptr<fcl::Convexd>> m_tet_shapes;
+  std::vector<std::unique_ptr<fcl::CollisionObjectd>> m_tet_objects, m_point_objects;
+  std::vector<std::pair<std::int32_t, std::int32_t>> m_tet_id, m_point_id;  // (body, index) per object
+  fcl::DynamicAABBTreeCollisionManagerd m_tets, m_points;
+};
+
+void BM_Fcl(benchmark::State& state) {
+  World world = scene_world(static_cast<int>(state.range(0)));
+  const std::vector<Vec3> rest = world.bodies.back().x_m;
+  FclPeer fcl_peer(world);
+  std::int64_t iteration = 0, first_inside = -1;
+  for (auto _ : state) {
+    state.PauseTiming();
+    deform(world, rest, iteration++);
+    state.ResumeTiming();
+    const std::int64_t inside = fcl_peer.inside(world);
     if (first_inside < 0) first_inside = inside;
   }
   state.counters["inside"] = static_cast<double>(first_inside);
+}
+
+// The four side by side: BM_PeersPaired/<scene> deforms the scene once an
+// iteration, then answers the query with each of ours (the paper's fresh
+// hash, and keep_table's refresh), CGAL's and FCL's at those positions, in
+// an order that rotates with the iteration, so the host's load, which moves
+// this VM's figures between minutes, weighs on all four alike (the separate
+// benchmarks above run minutes apart). Counters: <peer>_over_ours and
+// <peer>_over_kept, the peer's time over ours (sums over the iterations:
+// the speed-up ours has), and ms_<each> a query. Stops with an error if
+// ours and the kept table disagree (they must agree exactly), or on the dog
+// pair if a peer's count differs from ours by more than 2 (the boundary
+// conventions above; on plates20 they differ by design).
+void BM_PeersPaired(benchmark::State& state) {
+  const int scene = static_cast<int>(state.range(0));
+  Ours fresh(scene), kept(scene);
+  kept.detector.enable_refresh();
+  kept.detector.hash_tets(kept.world, kept.pairs);
+  World& world = fresh.world;  // all four answer at its positions (kept's world follows it)
+  FclPeer fcl_peer(world);
+  double seconds[4] = {0, 0, 0, 0};  // fresh, kept, CGAL, FCL
+  std::int64_t iteration = 0;
+  for (auto _ : state) {
+    deform(world, fresh.rest, iteration);
+    kept.world.bodies.back().x_m = world.bodies.back().x_m;
+    std::int64_t inside[4] = {0, 0, 0, 0};
+    for (int k = 0; k < 4; ++k) {
+      const int which = static_cast<int>((iteration + k) % 4);
+      const auto start = std::chrono::steady_clock::now();
+      std::uint64_t work = 0;
+      switch (which) {
+        case 0:
+          work = fresh.detector.hash_tets(world, fresh.pairs, nullptr, true);
+          inside[0] = count_inside(fresh.detector, world, fresh.pairs, work);
+          break;
+        case 1:
+          work = kept.detector.refresh_tets(kept.world, kept.pairs);
+          inside[1] = count_inside(kept.detector, kept.world, kept.pairs, work);
+          break;
+        case 2: inside[2] = cgal_inside(world); break;
+        default: inside[3] = fcl_peer.inside(world); break;
+      }
+      seconds[which] += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
+    ++iteration;
+    if (inside[0] != inside[1] ||
+        (scene == 0 && (std::llabs(inside[2] - inside[0]) > 2 || std::llabs(inside[3] - inside[0]) > 2))) {
+      state.SkipWithError("the peers' answers differ beyond their boundary conventions");
+      return;
+    }
+  }
+  const double n = static_cast<double>(std::max<std::int64_t>(iteration, 1));
+  const char* names[4] = {"ours", "kept", "cgal", "fcl"};
+  for (int k = 0; k < 4; ++k) state.counters[std::string("ms_") + names[k]] = 1e3 * seconds[k] / n;
+  for (int k = 2; k < 4; ++k) {
+    state.counters[std::string(names[k]) + "_over_ours"] = seconds[k] / seconds[0];
+    state.counters[std::string(names[k]) + "_over_kept"] = seconds[k] / seconds[1];
+  }
 }
 
 BENCHMARK(BM_Ours)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
@@ -351,6 +428,7 @@ BENCHMARK(BM_OursKeptTable)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_QueryClasses)->ArgsProduct({{0, 1, 2, 3}, {0, 25}})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Cgal)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Fcl)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK(BM_PeersPaired)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(12);
 
 }  // namespace
 
