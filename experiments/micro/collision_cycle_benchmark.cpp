@@ -391,11 +391,12 @@ void BM_ThreadsPaired(benchmark::State& state) {
   pair.stage_ratios(state, "speedup_", 0, 1);
   // ms1_<stage>, ms2_<stage>: the stage's time a cycle on 1 and 2 threads,
   // so a stage's loss (ms2 - ms1 / 2) can be weighed against the others'.
+  const double calls = static_cast<double>(std::max<std::int64_t>(pair.calls, 1));
   for (std::size_t st = 0; st < kCostStages; ++st) {
     if (!(pair.stages[0].ms[st] > 0.0) || static_cast<CostStage>(st) == CostStage::Apply) continue;
     const std::string name(cost_stage_name(static_cast<CostStage>(st)));
-    state.counters["ms1_" + name] = pair.stages[0].ms[st] / static_cast<double>(std::max<std::int64_t>(pair.calls, 1));
-    state.counters["ms2_" + name] = pair.stages[1].ms[st] / static_cast<double>(std::max<std::int64_t>(pair.calls, 1));
+    state.counters["ms1_" + name] = pair.stages[0].ms[st] / calls;
+    state.counters["ms2_" + name] = pair.stages[1].ms[st] / calls;
   }
 }
 BENCHMARK(BM_ThreadsPaired)->Args({0, 0})->Args({1, 0})->Args({0, 125})->Unit(benchmark::kMillisecond);

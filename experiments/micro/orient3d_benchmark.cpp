@@ -32,7 +32,8 @@ const std::vector<V>& near_coplanar() {
     std::uniform_int_distribution<int> ulps(-2, 2);
     std::vector<V> p;
     while (p.size() < 4 * 20000) {
-      const V a(unit(rng), unit(rng), unit(rng)), b(unit(rng), unit(rng), unit(rng)), c(unit(rng), unit(rng), unit(rng));
+      const V a(unit(rng), unit(rng), unit(rng)), b(unit(rng), unit(rng), unit(rng)),
+          c(unit(rng), unit(rng), unit(rng));
       V d = (a + b + c) / 3.0 + w(rng) * (b - a) + w(rng) * (c - a);
       for (int k = 0; k < 3; ++k)
         for (int n = ulps(rng); n != 0; n += n > 0 ? -1 : 1) d[k] = std::nextafter(d[k], n > 0 ? 2.0 : 1.0);

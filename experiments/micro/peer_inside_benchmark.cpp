@@ -112,6 +112,21 @@ struct Ours {
   TetHashDetector detector;
 };
 
+// Ours at `world`'s positions, the paper's schedule: hashed afresh and
+// queried at once, as a cycle without a budget hashes (tets no vertex of the
+// other object reaches left out).
+std::int64_t fresh_inside(Ours& o, const World& world) {
+  std::uint64_t work = o.detector.hash_tets(world, o.pairs, nullptr, true);
+  return count_inside(o.detector, world, o.pairs, work);
+}
+
+// Ours with keep_table's refresh (BM_OursKeptTable): the table o.detector
+// holds refreshed to `world`'s positions, the overflow built with it.
+std::int64_t kept_inside(Ours& o, const World& world) {
+  std::uint64_t work = o.detector.refresh_tets(world, o.pairs);
+  return count_inside(o.detector, world, o.pairs, work);
+}
+
 void BM_Ours(benchmark::State& state) {
   Ours o(static_cast<int>(state.range(0)));
   std::int64_t iteration = 0, inside = 0, first_inside = -1;
@@ -119,10 +134,7 @@ void BM_Ours(benchmark::State& state) {
     state.PauseTiming();
     deform(o.world, o.rest, iteration++);
     state.ResumeTiming();
-    // Queried at once, at the hash's positions: as a cycle without a budget
-    // hashes (tets no vertex of the other object reaches left out).
-    std::uint64_t work = o.detector.hash_tets(o.world, o.pairs, nullptr, true);
-    inside = count_inside(o.detector, o.world, o.pairs, work);
+    inside = fresh_inside(o, o.world);
     if (first_inside < 0) first_inside = inside;
   }
   state.counters["inside"] = static_cast<double>(first_inside);
@@ -150,8 +162,7 @@ void BM_OursKeptTable(benchmark::State& state) {
     state.PauseTiming();
     deform(o.world, o.rest, iteration++);
     state.ResumeTiming();
-    std::uint64_t work = o.detector.refresh_tets(o.world, o.pairs);  // the overflow built with it
-    inside = count_inside(o.detector, o.world, o.pairs, work);
+    inside = kept_inside(o, o.world);
     if (first_inside < 0) first_inside = inside;
   }
   state.counters["inside"] = static_cast<double>(first_inside);
@@ -378,30 +389,22 @@ void BM_Fcl(benchmark::State& state) {
 // conventions above; on plates20 they differ by design).
 void BM_PeersPaired(benchmark::State& state) {
   const int scene = static_cast<int>(state.range(0));
-  Ours fresh(scene), kept(scene);
+  Ours fresh(scene), kept(scene);  // two detectors; all four answer at fresh.world's positions
+  World& world = fresh.world;
   kept.detector.enable_refresh();
-  kept.detector.hash_tets(kept.world, kept.pairs);
-  World& world = fresh.world;  // all four answer at its positions (kept's world follows it)
+  kept.detector.hash_tets(world, kept.pairs);
   FclPeer fcl_peer(world);
   double seconds[4] = {0, 0, 0, 0};  // fresh, kept, CGAL, FCL
   std::int64_t iteration = 0;
   for (auto _ : state) {
     deform(world, fresh.rest, iteration);
-    kept.world.bodies.back().x_m = world.bodies.back().x_m;
     std::int64_t inside[4] = {0, 0, 0, 0};
     for (int k = 0; k < 4; ++k) {
       const int which = static_cast<int>((iteration + k) % 4);
       const auto start = std::chrono::steady_clock::now();
-      std::uint64_t work = 0;
       switch (which) {
-        case 0:
-          work = fresh.detector.hash_tets(world, fresh.pairs, nullptr, true);
-          inside[0] = count_inside(fresh.detector, world, fresh.pairs, work);
-          break;
-        case 1:
-          work = kept.detector.refresh_tets(kept.world, kept.pairs);
-          inside[1] = count_inside(kept.detector, kept.world, kept.pairs, work);
-          break;
+        case 0: inside[0] = fresh_inside(fresh, world); break;
+        case 1: inside[1] = kept_inside(kept, world); break;
         case 2: inside[2] = cgal_inside(world); break;
         default: inside[3] = fcl_peer.inside(world); break;
       }

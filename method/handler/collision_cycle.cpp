@@ -380,9 +380,7 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
             for (const std::size_t last = m_batch_begin + m_batch.size() - 1; m_cursor < last;) {
               const Answer& answer = m_batch[m_cursor++ - m_batch_begin];
               if (answer.part >= 0) add_contact(hit_of(answer));
-              budget.charge(answer.work);
-              m_step_costs.work_of(task_stage) += answer.work;
-              ++m_tasks;
+              count_task(budget, task_stage, answer.work);
             }
           }
           const Answer& answer = m_batch[m_cursor++ - m_batch_begin];
@@ -402,11 +400,7 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
           // one-triangle tasks below would be, none of which the budget stops.
           m_surface.hash_all(world, m_surface_bodies, *m_pool, m_surface_work);
           ++m_parallel_surface_hashes;
-          for (std::size_t i = 0; i + 1 < m_surface_work.size(); ++i) {
-            budget.charge(m_surface_work[i]);
-            m_step_costs.work_of(task_stage) += m_surface_work[i];
-            ++m_tasks;
-          }
+          for (std::size_t i = 0; i + 1 < m_surface_work.size(); ++i) count_task(budget, task_stage, m_surface_work[i]);
           work = m_surface_work.back();  // not empty: some body with a surface is listed
           m_surface_body = m_surface_bodies.size();
           enter(Stage::BorderDepth, world);
@@ -533,9 +527,7 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
       case Stage::Done:
         break;
     }
-    budget.charge(work);
-    m_step_costs.work_of(task_stage) += work;
-    ++m_tasks;
+    count_task(budget, task_stage, work);
     if (m_stage == Stage::Done || cost_stage(m_stage) != task_stage) close_stage(task_stage);
     if (m_stage == Stage::Done) break;
     bool stop = budget.expired();  // an interruption point

@@ -273,6 +273,13 @@ class CollisionCycle {
 
  private:
   void enter(Stage stage, const World& world);
+  /// What every task leaves behind, whichever loop ran it: its work charged
+  /// to the budget and to its stage, and one more task counted.
+  void count_task(Budget& budget, CostStage stage, std::uint64_t work) {
+    budget.charge(work);
+    m_step_costs.work_of(stage) += work;
+    ++m_tasks;
+  }
   void add_contact(const Contact& c);
   std::optional<Contact> detect(const World& world, std::int32_t body, std::int32_t vertex, std::uint64_t& work);
   void build_next_layer(const World& world);

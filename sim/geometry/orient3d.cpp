@@ -178,8 +178,9 @@ inline void product_parts(double a, double b, double& p, double& e) {
 }
 
 template <bool kFma>
-[[gnu::always_inline]] inline bool exact_differences_sign(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
-                                   const Eigen::Vector3d& d, int& sign) {
+[[gnu::always_inline]] inline bool exact_differences_sign(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                                          const Eigen::Vector3d& c, const Eigen::Vector3d& d,
+                                                          int& sign) {
   // The nine differences a-d, b-d, c-d; only exact ones go on (Two-Sum's
   // error is zero exactly when the rounded difference is the difference).
   double v[9];
