@@ -25,8 +25,8 @@
 // in parallel; the same contacts on every count, which the counter
 // `colliding` shows). ms_<stage>: the cycle's wall time per stage, per cycle.
 // BM_ThreadsPaired and BM_OrderPaired measure two cycles side by side (2
-// threads against 1; the dog pair renumbered along a Morton curve against
-// the file's numbering): see their comments.
+// threads against 1; the detector's tets, or the dog pair itself, ordered
+// along a Morton curve against the file's order): see their comments.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -39,6 +39,7 @@
 #include <vector>
 
 #include "experiments/scene/scene_file.hpp"
+#include "method/detection/morton_order.hpp"
 #include "method/handler/collision_cycle.hpp"
 #include "sim/mesh/medit_io.hpp"
 
@@ -54,25 +55,6 @@ struct Fixture {
 // Orders of a mesh's numbering, for BM_OrderPaired: the file's, or its tets
 // (by centroid), its vertices, or both sorted along a Morton curve.
 enum class Numbering { File = 0, MortonTets = 1, MortonVertices = 2, MortonBoth = 3 };
-
-// The Morton key of p within [lo, hi]: 21 bits an axis, interleaved.
-std::uint64_t morton_key(const Vec3& p, const Vec3& lo, const Vec3& hi) {
-  const auto spread = [](std::uint64_t v) {  // bit i to bit 3i
-    v &= 0x1fffff;
-    v = (v | v << 32) & 0x1f00000000ffffULL;
-    v = (v | v << 16) & 0x1f0000ff0000ffULL;
-    v = (v | v << 8) & 0x100f00f00f00f00fULL;
-    v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
-    v = (v | v << 2) & 0x1249249249249249ULL;
-    return v;
-  };
-  std::uint64_t key = 0;
-  for (int a = 0; a < 3; ++a) {
-    const double t = (p[a] - lo[a]) / std::max(hi[a] - lo[a], 1e-300);
-    key |= spread(static_cast<std::uint64_t>(std::clamp(t, 0.0, 1.0) * 2097151.0)) << a;
-  }
-  return key;
-}
 
 // The same mesh renumbered: vertices and/or tets sorted by Morton key (a
 // tet by its centroid's), each tet's vertices renamed, the whole rebuilt.
@@ -401,37 +383,48 @@ void BM_ThreadsPaired(benchmark::State& state) {
 }
 BENCHMARK(BM_ThreadsPaired)->Args({0, 0})->Args({1, 0})->Args({0, 125})->Unit(benchmark::kMillisecond);
 
-// What renumbering along a space-filling curve would buy, measured side by
-// side: BM_OrderPaired/<numbering>/<keep> runs the dog pair as the file
-// numbers it and renumbered (1: tets along a Morton curve by centroid, 2:
-// vertices, 3: both), one cycle of each in every iteration (which goes first
-// alternates), with the moving benchmarks' motion and keep. time_ratio:
-// renumbered over the file's (sums over the iterations); ratio_<stage> the
-// same a stage. Not a setting of the method: renumbered, a mesh changes the
-// order of a bucket's tets (so the candidates a query is charged before its
-// hit, and which tet the smallest-id rule picks) and of every sum, so its
-// steps.csv is not the file's bit for bit. Stops with an error if the
-// colliding counts differ.
+// What ordering along a space-filling curve buys, measured side by side:
+// BM_OrderPaired/<numbering>/<keep>/<scene> runs the dog pair (scene 0; 1:
+// plates20, /0 only) as the file numbers it
+// with the detector's tets in the file's order (DetectionSettings::
+// curve_order off: the layout before the detector's slots), against
+// 0: the same mesh with the detector's slots along a Morton curve (the
+// default; the same answers and work), or the mesh itself renumbered
+// (1: tets along a Morton curve by centroid, 2: vertices, 3: both), one
+// cycle of each in every iteration (which goes first alternates), with the
+// moving benchmarks' motion and keep. time_ratio: the second over the first
+// (sums over the iterations); ratio_<stage> the same a stage. Renumbering
+// the mesh is not a setting of the method: it changes which tet the
+// smallest-index rule picks and the order of every sum, so its steps.csv
+// is not the file's bit for bit. Stops with an error if the colliding
+// counts differ.
 void BM_OrderPaired(benchmark::State& state) {
-  if (!std::filesystem::exists(std::filesystem::path(TCBENCH_SHARED_MESHES) / "dog.mesh")) {
+  const bool plates = state.range(2) == 1;
+  if (!plates && !std::filesystem::exists(std::filesystem::path(TCBENCH_SHARED_MESHES) / "dog.mesh")) {
     state.SkipWithError("dog.mesh not found (../shared/data/meshes)");
     return;
   }
-  Fixture f[2] = {dog_pair(), dog_pair(static_cast<Numbering>(state.range(0)))};
+  if (plates && state.range(0) != 0) {
+    state.SkipWithError("plates20 is generated: only the detector's slots (/0) apply");
+    return;
+  }
+  Fixture f[2] = {plates ? plates20() : dog_pair(),
+                  plates ? plates20() : dog_pair(static_cast<Numbering>(state.range(0)))};
   const std::vector<char> moving = every_other_body(f[0].world);
   std::vector<CollisionCycle> cycles;
   for (Fixture& g : f) {
     CollisionSettings settings = resolve_collision_settings(g.world, g.scene.collision, g.scene.world.dt_s);
     settings.threads = 1;
+    settings.detection.curve_order = &g != &f[0];
     cycles.emplace_back(g.world, settings, DetectionMode::SpatialHash, keep_schedule(state.range(1)));
   }
   CollisionCycle* both[2] = {&cycles[0], &cycles[1]};
   World* worlds[2] = {&f[0].world, &f[1].world};
-  SideBySide pair;  // 0: the file's numbering, 1: renumbered
+  SideBySide pair;  // 0: the file's numbering and order, 1: slots along the curve, or renumbered
   const auto move = [&](std::int64_t call) {
     for (Fixture& g : f) move_between_cycles(g.world, moving, call);
   };
-  if (!pair.loop(state, both, worlds, true, move, "the renumbered dog pair found a different number of contacts"))
+  if (!pair.loop(state, both, worlds, true, move, "the reordered pair found a different number of contacts"))
     return;
   state.counters["time_ratio"] = pair.seconds[0] > 0.0 ? pair.seconds[1] / pair.seconds[0] : 0.0;
   state.counters["ms_file"] = pair.ms_per_call(0);
@@ -439,7 +432,11 @@ void BM_OrderPaired(benchmark::State& state) {
   state.counters["colliding"] = static_cast<double>(cycles[0].contacts().size());
   pair.stage_ratios(state, "ratio_", 1, 0);
 }
-BENCHMARK(BM_OrderPaired)->ArgsProduct({{1, 2, 3}, {0, 125}})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_OrderPaired)
+    ->ArgsProduct({{0, 1, 2, 3}, {0, 125}, {0}})
+    ->Args({0, 0, 1})
+    ->Args({0, 125, 1})
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -40,18 +40,36 @@
 ///      skip pairs that are not enabled and tets incident to the vertex
 ///      (self-collision), reject by the stored AABB, then the exact perturbed
 ///      point-in-tet test (perturbed_predicates.hpp). The cheapest filters
-///      first: a bucket lists its tets by ascending global id, so without
-///      self-collision the querying body's own tets (one range of ids) are
-///      one block of it, stepped over by a binary search before any of
-///      their memory is read (most entries near a surface on the dog pair),
-///      and the bucket ends at the first id at or above a tet already
-///      holding the point; then the owner, a dense 4-byte array that stays
-///      in cache; testing the 48-byte box first measured 1.8x slower there.
+///      first: a bucket lists its tets body by body, in body order (every
+///      hashing path inserts body by body), so without self-collision the
+///      querying body's own tets (one range of slots) are one block of it,
+///      stepped over by a binary search before any of their memory is read
+///      (most entries near a surface on the dog pair), and the bucket ends
+///      at the first entry of a later body than a tet already holding the
+///      point; then the owner, a dense 4-byte array that stays in cache;
+///      testing the 48-byte box first measured 1.8x slower there.
 /// A point inside several tets (overlapping objects or a folded mesh) is
-/// reported in the one with the smallest (body, tet) index. Buckets list their
-/// tets by ascending index (every hashing path inserts in index order), which
-/// lets a query skip its own body's block and stop at its first hit; the
-/// answer is the smallest index all the same. Work: work_units.hpp.
+/// reported in the one with the smallest (body, tet) index, the file's.
+/// Work: work_units.hpp; a query is charged what a scan of its buckets in
+/// ascending file index, stopping at its first hit, is charged (below).
+///
+/// Tet numbering. Inside the detector a tet has a slot: within its body's
+/// range of global ids (the same ranges as the file's), the body's tets
+/// ordered along a Morton curve of its rest positions (morton_order.hpp;
+/// DetectionSettings::curve_order), so the tets of one bucket, and the tets
+/// one after another in a walk, sit near each other in memory: the boxes,
+/// stamps and vertex indices (copied into slot order) a query or a hash
+/// reads. The file's numbering (a mesh's order; vertices keep it, measured
+/// as poor: a tet's vertex indices span thousands) is what every answer,
+/// contact and charge is defined in: buckets hold slots, so a bucket need
+/// not list its tets in file order; a query therefore gathers a bucket's
+/// candidates (box test passed, below its best so far in file order), then
+/// tests and charges them in ascending file order up to the first hit:
+/// what a scan of the bucket in file order, stopping at its first hit,
+/// tests and is charged. So the answer, work and every stamp that matters
+/// are those of the file order, whatever order a bucket lists its tets in
+/// (the walk's or the slots'), which the work test checks against a
+/// file-order count.
 
 #include <optional>
 
@@ -66,6 +84,11 @@ struct DetectionSettings {
   double cell_size_m = 0.0;     ///< > 0
   std::size_t table_size = 0;   ///< 0: next prime above twice the tet count
   HashFunction hash = HashFunction::Mixed;
+  /// Number the tets inside the detector along a Morton curve of each
+  /// body's rest positions (a layout only: every answer, contact and unit of
+  /// work is the same either way; see "Tet numbering" above). false keeps
+  /// the file's order, for measuring the layout side by side.
+  bool curve_order = true;
 };
 
 class TetHashDetector {
@@ -156,10 +179,11 @@ class TetHashDetector {
   /// Aligned to a cache line: each query bumps `query`, and the scratches
   /// of two threads side by side in one line would pass it back and forth.
   struct alignas(64) QueryScratch {
-    std::vector<std::uint32_t> tested;  ///< per global tet: the last query that met it
+    std::vector<std::uint32_t> tested;  ///< per slot: the last query that met it
     std::uint32_t query = 0;
+    std::vector<std::uint64_t> candidates;  ///< one bucket's candidates: file id << 32 | slot
   };
-  QueryScratch make_scratch() const { return QueryScratch{std::vector<std::uint32_t>(m_boxes.size(), 0), 0}; }
+  QueryScratch make_scratch() const { return QueryScratch{std::vector<std::uint32_t>(m_boxes.size(), 0), 0, {}}; }
   /// query_point() with the caller's scratch; the same answer and work.
   std::optional<Contact> query_point(const World& world, const CollisionPairs& pairs, std::int32_t object,
                                      std::int32_t vertex, std::uint64_t& work, double margin_m,
@@ -178,13 +202,13 @@ class TetHashDetector {
   /// hash_some_tets()'s and refresh_some_tets()'s walk: from the cursor, the
   /// next max_tets tets (hash order) of bodies with a partner (and, if
   /// movable_only, that can move); each non-degenerate one gets its current
-  /// AABB stored, then visit(global id) returns its work units.
+  /// AABB stored, then visit(slot) returns its work units.
   template <typename Visit>
   std::uint64_t walk_tets(const World& world, const CollisionPairs& pairs, bool movable_only, std::size_t max_tets,
                           bool& done, Visit&& visit);
-  /// Stores tet t of body (global id `id`)'s current AABB: what every
+  /// Stores the current AABB of the tet in slot `id` of body: what every
   /// hashing path (serial walk, parallel parts, refresh) records per tet.
-  void store_box(const Body& body, std::size_t t, std::uint32_t id);
+  void store_box(const Body& body, std::uint32_t id);
   /// With refresh enabled, keeps the cells tet `id`'s stored box was hashed in.
   void record_hashed_cells(std::uint32_t id);
   /// Whether tet `id`'s stored box stays within the cells it was hashed in.
@@ -194,7 +218,7 @@ class TetHashDetector {
   bool m_overflow_active = false;                     // queries search m_overflow too
   bool m_widening = false;                            // enable_widening(): the table always hashes
   std::size_t m_overflow_tets = 0;
-  // Per global tet (refresh only), the cell range it was hashed in, as
+  // Per slot (refresh only), the cell range it was hashed in, as
   // limits on its box's grid coordinates (SpatialHash::grid_coordinate):
   // lo[a] = first cell index, hi[a] = last cell index + 1. The box stays in
   // those cells when every lo coordinate >= lo and every hi coordinate < hi:
@@ -215,10 +239,18 @@ class TetHashDetector {
   };
   std::vector<LeftIds> m_part_left;
   std::vector<std::uint32_t> m_left_ids;
-  std::vector<std::uint32_t> m_body_tet_offset;       // global tet id = offset[body] + tet
-  std::vector<std::int32_t> m_owner;                  // global tet id -> body (dense: the first filter)
-  // A tet's AABB (at hashing time, or at the last refresh), lo and hi side by
-  // side: the box test reads one record instead of two arrays.
+  std::vector<std::uint32_t> m_body_tet_offset;       // global tet id = offset[body] + tet (slots the same)
+  std::vector<std::int32_t> m_owner;                  // global tet id or slot -> body (dense: the first filter)
+  // The slots (file comment: "Tet numbering"): per slot, its global tet id
+  // in the file's numbering, its vertex indices and whether it is
+  // degenerate; per global tet id, its slot. Per-slot arrays are what the
+  // hot loops read; per-id ones are read only by the piecewise walks.
+  std::vector<std::uint32_t> m_file_id;
+  std::vector<Tet> m_slot_tets;
+  std::vector<char> m_slot_degenerate;
+  std::vector<std::uint32_t> m_slot_of;
+  // Per slot, a tet's AABB (at hashing time, or at the last refresh), lo and
+  // hi side by side: the box test reads one record instead of two arrays.
   struct TetBox {
     Vec3 lo, hi;
   };

@@ -86,15 +86,15 @@ void for_each_scene_apart(F&& f) {
     }
 }
 
-// Every vertex's unwidened query finds the same tet in `got` as in `want`,
-// and is charged the same work.
+// Every vertex's query (unwidened, or widened by margin_m) finds the same
+// tet in `got` as in `want`, and is charged the same work.
 void require_same_queries(const World& world, const CollisionPairs& pairs, TetHashDetector& want,
-                          TetHashDetector& got) {
+                          TetHashDetector& got, double margin_m = 0.0) {
   for (std::int32_t o = 0; o < static_cast<std::int32_t>(world.bodies.size()); ++o)
     for (std::int32_t v = 0; v < static_cast<std::int32_t>(world.bodies[o].x_m.size()); ++v) {
       std::uint64_t want_work = 0, got_work = 0;
-      const auto want_hit = want.query_point(world, pairs, o, v, want_work);
-      const auto got_hit = got.query_point(world, pairs, o, v, got_work);
+      const auto want_hit = want.query_point(world, pairs, o, v, want_work, margin_m);
+      const auto got_hit = got.query_point(world, pairs, o, v, got_work, margin_m);
       INFO("body " << o << ", vertex " << v);
       CHECK(got_work == want_work);
       REQUIRE(got_hit.has_value() == want_hit.has_value());
@@ -626,4 +626,62 @@ TEST_CASE("bodies far apart: a dense grid over them would be too large, so the t
     require_same_queries(world, pairs, hashed, far);
   }
   CHECK(refused > 0);
+}
+
+TEST_CASE("the detector's tets along a Morton curve answer and charge every query as in the file's order, on every "
+          "hashing path, widened and refreshed",
+          "[detection][morton][threads]") {
+  // DetectionSettings::curve_order only lays the tets out: buckets then list
+  // a body's tets in slot order, not file order, and the query must still
+  // give the file order's tet (the smallest index) and charge what a scan in
+  // file order, stopping at its first hit, is charged. Both layouts, side
+  // by side: the one-task hash on 0 to 2 threads, the piecewise hash, a
+  // widened query (several buckets, one best-so-far), and a refresh after a
+  // move (the overflow searched too).
+  for_each_scene_apart([&](World& world, const CollisionPairs& pairs, const DetectionSettings& settings) {
+    DetectionSettings file_order = settings;
+    file_order.curve_order = false;
+    REQUIRE(settings.curve_order);
+    for (const int threads : {0, 1, 2}) {
+      INFO(threads << " threads");
+      WorkerPool pool(std::max(threads, 1));
+      WorkerPool* p = threads > 0 ? &pool : nullptr;
+      TetHashDetector want(world, file_order), got(world, settings);
+      CHECK(got.hash_tets(world, pairs, p) == want.hash_tets(world, pairs, p));
+      require_same_queries(world, pairs, want, got);
+    }
+    {
+      INFO("piecewise, widened a third of a cell");
+      TetHashDetector want(world, file_order), got(world, settings);
+      want.enable_widening();
+      got.enable_widening();
+      want.begin_hash();
+      got.begin_hash();
+      std::uint64_t want_work = 0, got_work = 0;
+      for (bool done = false; !done;) want_work += want.hash_some_tets(world, pairs, 7, done);
+      for (bool done = false; !done;) got_work += got.hash_some_tets(world, pairs, 7, done);
+      want.mutable_hash().build();
+      got.mutable_hash().build();
+      CHECK(got_work == want_work);
+      require_same_queries(world, pairs, want, got);
+      require_same_queries(world, pairs, want, got, settings.cell_size_m / 3.0);
+    }
+    {
+      INFO("refreshed after a move, whole and piecewise");
+      TetHashDetector want(world, file_order), got(world, settings), got_pieces(world, settings);
+      for (TetHashDetector* d : {&want, &got, &got_pieces}) {
+        d->enable_refresh();
+        d->hash_tets(world, pairs);
+      }
+      move_bodies(world, settings.cell_size_m, 0.8, 0.3);
+      WorkerPool pool(2);
+      const std::uint64_t want_work = want.refresh_tets(world, pairs, &pool);
+      CHECK(got.refresh_tets(world, pairs, &pool) == want_work);
+      CHECK(refresh(world, pairs, got_pieces, 5) == want_work);
+      CHECK(got.overflow_tets() == want.overflow_tets());
+      require_same_queries(world, pairs, want, got);
+      require_same_queries(world, pairs, want, got_pieces);
+      require_same_queries(world, pairs, want, got, settings.cell_size_m / 4.0);
+    }
+  });
 }
