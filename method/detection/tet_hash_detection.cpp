@@ -134,7 +134,8 @@ std::size_t TetHashDetector::memory_bytes() const {
                       heap_bytes(m_part_left) + heap_bytes(m_left_ids) + heap_bytes(m_body_tet_offset) +
                       heap_bytes(m_owner) + heap_bytes(m_file_id) + heap_bytes(m_slot_tets) +
                       heap_bytes(m_slot_degenerate) + heap_bytes(m_slot_of) + heap_bytes(m_boxes) + heap_bytes(m_body_boxes) +
-                      heap_bytes(m_partner_boxes) + heap_bytes(m_query_reach) + heap_bytes(m_scratch.tested);
+                      heap_bytes(m_partner_boxes) + heap_bytes(m_query_reach) + heap_bytes(m_scratch.tested) +
+                      heap_bytes(m_scratch.candidates);
   for (const LeftIds& left : m_part_left) bytes += heap_bytes(left.ids);
   return bytes;
 }
@@ -331,7 +332,7 @@ std::uint64_t TetHashDetector::refresh_tets(const World& world, const CollisionP
   const auto check = [&](int part, std::size_t begin, std::size_t end) {
     std::uint64_t visited = 0;
     // The current body's union in registers, handed to part_boxes when the
-    // body changes (ids run body by body), not a memory update a tet (which
+    // body changes (slots run body by body), not a memory update a tet (which
     // measured 1.03-1.05 of this refresh's time, ms_hash_tets with
     // keep_table, 6 paired rounds).
     std::size_t body_of_union = world.bodies.size();

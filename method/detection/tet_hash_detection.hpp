@@ -155,7 +155,7 @@ class TetHashDetector {
   /// The whole refresh at once (it calls begin_refresh() first), its tets' boxes and
   /// cell checks on the pool's threads (or the caller's without one), then
   /// the overflow inserted and built as hash_tets() builds the main table
-  /// (SpatialHash::insert_all_and_build(): buckets in id order): the same
+  /// (SpatialHash::insert_all_and_build(): buckets in slot order): the same
   /// boxes, overflow and work as refresh_some_tets() to the end and a build,
   /// on any thread count. A build of the overflow afterwards does nothing.
   std::uint64_t refresh_tets(const World& world, const CollisionPairs& pairs, WorkerPool* pool = nullptr);
@@ -228,11 +228,11 @@ class TetHashDetector {
     double lo[3], hi[3];
   };
   std::vector<CellLimits> m_hashed_cells;
-  // refresh_tets(): the ids of the tets whose boxes left their cells, each
+  // refresh_tets(): the slots of the tets whose boxes left their cells, each
   // thread's (ascending) in its own list, a cache line apart as they grow;
-  // then all of them in id order, the overflow's input. The overflow is then
-  // built from these tets alone, split evenly over the threads: over all
-  // ids, a thread whose range held the one moving body built it alone
+  // then all of them in slot order, the overflow's input. The overflow is
+  // then built from these tets alone, split evenly over the threads: over
+  // all slots, a thread whose range held the one moving body built it alone
   // (BM_ThreadsPaired/0/125: 2 threads took 1.2x one thread's time).
   struct alignas(64) LeftIds {
     std::vector<std::uint32_t> ids;

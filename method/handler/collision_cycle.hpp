@@ -82,7 +82,7 @@
 /// work units on any thread count (without a budget and unwidened, a table
 /// without the tets no query point reaches: the same answers and work); so does a RefreshTets task at that granularity
 /// (TetHashDetector::refresh_tets: the boxes checked on the pool, the
-/// overflow filled in id order: the same overflow and work units). The paper's BorderDepth tasks (not fine tasks) are batched the
+/// overflow filled in slot order: the same overflow and work units). The paper's BorderDepth tasks (not fine tasks) are batched the
 /// same way when every contact from the cursor on was detected at the
 /// current step's positions, so that no task ahead re-detects a point (a
 /// re-detection changes what later depths read): each depth is computed on a

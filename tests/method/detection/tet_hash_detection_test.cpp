@@ -332,9 +332,10 @@ TEST_CASE("hashing the tets on 1, 2 or 3 threads gives the piecewise table: same
 
 TEST_CASE("a tet met several times in a query's bucket is one candidate", "[detection]") {
   // A table of one bucket: every cell of every tet lands in it, each tet's
-  // entries side by side, in id order. A query is charged one candidate for
-  // each distinct tet of the other body whose box holds the point, up to the
-  // first that holds the point itself (later ids are skipped: the lowest one
+  // entries side by side, in slot order (the detector's Morton layout). A
+  // query is charged one candidate for each distinct tet of the other body
+  // whose box holds the point, up to the first in file order that holds the
+  // point itself (later ids are skipped: the lowest one
   // is the answer), however many cells the tet covers. Small cells make each
   // tet cover many.
   const auto scene = test::scene_of({{"a", "box:size=0.2x0.2x0.2,cells=2x2x2"},
