@@ -82,8 +82,10 @@ TetMesh renumbered(const TetMesh& mesh, Numbering numbering) {
       for (auto& v : t) v = renamed[v];
   }
   if (numbering == Numbering::MortonTets || numbering == Numbering::MortonBoth) {
-    const auto key = [&](const Tet& t) { return morton_key(0.25 * (x[t[0]] + x[t[1]] + x[t[2]] + x[t[3]]), lo, hi); };
-    std::stable_sort(tets.begin(), tets.end(), [&](const Tet& a, const Tet& b) { return key(a) < key(b); });
+    std::vector<Tet> sorted;
+    sorted.reserve(tets.size());
+    for (const std::uint32_t t : morton_tet_order(x, tets)) sorted.push_back(tets[t]);  // the detector's slot order
+    tets = std::move(sorted);
   }
   return build_tet_mesh(std::move(x), std::move(tets));
 }

@@ -1,13 +1,13 @@
 #include "method/detection/tet_hash_detection.hpp"
 
-#include "method/detection/morton_order.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <optional>
 #include <stdexcept>
 
+#include "method/detection/morton_order.hpp"
 #include "method/geometry/perturbed_predicates.hpp"
 #include "method/handler/heap_bytes.hpp"
 #include "method/handler/work_units.hpp"
@@ -105,13 +105,11 @@ TetHashDetector::TetHashDetector(const World& world, const DetectionSettings& se
     m_owner.insert(m_owner.end(), mesh.tet_count(), static_cast<std::int32_t>(b));
     // The body's slots: its tets along a Morton curve of its rest positions
     // (so the same for every body sharing a mesh, whatever the world's state).
-    std::vector<std::uint32_t> order;
-    if (settings.curve_order) {
+    std::vector<std::uint32_t> order(mesh.tet_count());
+    if (settings.curve_order)
       order = morton_tet_order(mesh.positions_m, mesh.tets);
-    } else {
-      order.resize(mesh.tet_count());
-      for (std::size_t t = 0; t < order.size(); ++t) order[t] = static_cast<std::uint32_t>(t);
-    }
+    else
+      std::iota(order.begin(), order.end(), 0u);
     for (const std::uint32_t t : order) {
       m_file_id.push_back(total + t);
       m_slot_tets.push_back(mesh.tets[t]);
@@ -133,8 +131,8 @@ std::size_t TetHashDetector::memory_bytes() const {
   std::size_t bytes = m_hash.memory_bytes() + m_overflow.memory_bytes() + heap_bytes(m_hashed_cells) +
                       heap_bytes(m_part_left) + heap_bytes(m_left_ids) + heap_bytes(m_body_tet_offset) +
                       heap_bytes(m_owner) + heap_bytes(m_file_id) + heap_bytes(m_slot_tets) +
-                      heap_bytes(m_slot_degenerate) + heap_bytes(m_slot_of) + heap_bytes(m_boxes) + heap_bytes(m_body_boxes) +
-                      heap_bytes(m_partner_boxes) + heap_bytes(m_query_reach) + heap_bytes(m_scratch.tested) +
+                      heap_bytes(m_slot_degenerate) + heap_bytes(m_slot_of) + heap_bytes(m_boxes) +
+                      heap_bytes(m_body_boxes) + heap_bytes(m_partner_boxes) + heap_bytes(m_query_reach) + heap_bytes(m_scratch.tested) +
                       heap_bytes(m_scratch.candidates);
   for (const LeftIds& left : m_part_left) bytes += heap_bytes(left.ids);
   return bytes;
@@ -525,7 +523,6 @@ std::optional<Contact> TetHashDetector::query_point(const World& world, const Co
   if (m_overflow_active) work += work::kPointQuery * search(m_overflow);  // a unit a cell of the overflow
   if (best == UINT32_MAX) return std::nullopt;
   const std::int32_t other = m_owner[best];  // a file id: the slots' ranges are the ids'
-
   return make_contact(world, object, vertex, other, static_cast<std::int32_t>(best - m_body_tet_offset[other]));
 }
 

@@ -25,7 +25,8 @@ TEST_CASE("a Morton key interleaves the three scaled coordinates, x lowest; the 
   CHECK(morton_key(Vec3(step, 0.0, 2.0), lo, hi) == std::uint64_t(1) << 60);
 }
 
-TEST_CASE("a Morton key is defined for any input: outside the box clamps, a NaN or an empty extent gives 0 on that axis",
+TEST_CASE("a Morton key is defined for any input: outside the box clamps, a NaN or an empty extent gives 0 on "
+          "that axis",
           "[detection][morton]") {
   const Vec3 lo(0.0, 0.0, 0.0), hi(1.0, 1.0, 1.0);
   constexpr double kInf = std::numeric_limits<double>::infinity();
