@@ -30,11 +30,23 @@ bool point_in_tet_perturbed(const Vec3& p, const Vec3& v0, const Vec3& v1, const
   // faces' area vectors sum to zero, so the eps-coefficients cancel), so a
   // flat tet (volume 0: the zero polynomial) never has four equal signs: it
   // contains nothing.
-  const int side = orient3d_perturbed_point(v1, v2, v3, p);
+  // Every face's orient3d(a, b, c, p) starts from a - p, b - p, c - p: the
+  // four differences are taken once, and orient3d's own floating-point
+  // filter (orient3d_filter, the same evaluation and bound) decides each
+  // face it can without a call; a face it leaves open goes the whole exact
+  // way. So the answer is exactly the four calls' (the randomized test in
+  // perturbed_predicates_test.cpp compares them on near-degenerate input).
+  const Vec3 d0 = v0 - p, d1 = v1 - p, d2 = v2 - p, d3 = v3 - p;
+  const auto face_side = [&p](const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& ad, const Vec3& bd,
+                              const Vec3& cd) {
+    const int s = orient3d_filter(ad, bd, cd);
+    return s != 0 ? s : orient3d_perturbed_point(a, b, c, p);
+  };
+  const int side = face_side(v1, v2, v3, d1, d2, d3);
   if (side == 0) return false;
-  if (orient3d_perturbed_point(v0, v3, v2, p) != side) return false;
-  if (orient3d_perturbed_point(v0, v1, v3, p) != side) return false;
-  return orient3d_perturbed_point(v0, v2, v1, p) == side;
+  if (face_side(v0, v3, v2, d0, d3, d2) != side) return false;
+  if (face_side(v0, v1, v3, d0, d1, d3) != side) return false;
+  return face_side(v0, v2, v1, d0, d2, d1) == side;
 }
 
 bool segment_crosses_triangle_perturbed(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c) {

@@ -13,8 +13,6 @@ namespace {
 
 constexpr double kEpsilon = 0x1p-53;  // half an ulp of 1.0
 constexpr double kSplitter = 0x1p27 + 1.0;
-// Error bound of the filtered evaluation (orient3d "stage A").
-constexpr double kOrient3dErrorBound = (7.0 + 56.0 * kEpsilon) * kEpsilon;
 // Error bound of a 2x2 determinant of differences (orient2d "stage A").
 constexpr double kDet2ErrorBound = (3.0 + 16.0 * kEpsilon) * kEpsilon;
 
@@ -309,17 +307,8 @@ int orient3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Ve
   const double adx = a.x() - d.x(), ady = a.y() - d.y(), adz = a.z() - d.z();
   const double bdx = b.x() - d.x(), bdy = b.y() - d.y(), bdz = b.z() - d.z();
   const double cdx = c.x() - d.x(), cdy = c.y() - d.y(), cdz = c.z() - d.z();
-
-  const double bdycdz = bdy * cdz, bdzcdy = bdz * cdy;
-  const double cdyadz = cdy * adz, cdzady = cdz * ady;
-  const double adybdz = ady * bdz, adzbdy = adz * bdy;
-  const double det = adx * (bdycdz - bdzcdy) + bdx * (cdyadz - cdzady) + cdx * (adybdz - adzbdy);
-  const double permanent = (std::fabs(bdycdz) + std::fabs(bdzcdy)) * std::fabs(adx) +
-                           (std::fabs(cdyadz) + std::fabs(cdzady)) * std::fabs(bdx) +
-                           (std::fabs(adybdz) + std::fabs(adzbdy)) * std::fabs(cdx);
-  const double bound = kOrient3dErrorBound * permanent;
-  if (det > bound) return -1;
-  if (-det > bound) return 1;
+  const Eigen::Vector3d ad(adx, ady, adz), bd(bdx, bdy, bdz), cd(cdx, cdy, cdz);
+  if (const int s = orient3d_filter(ad, bd, cd); s != 0) return s;
   // Exact shortcut: det is the sum of six products of three differences
   // (Leibniz); a computed difference is 0 exactly when its coordinates are
   // equal, so if every product has a zero factor the determinant is exactly 0.

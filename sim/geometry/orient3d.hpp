@@ -31,10 +31,43 @@
 /// expansions must (inexact differences with a determinant too small for
 /// the filter, or a sign the stage leaves open).
 
+#include <cmath>
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
 namespace tcb {
+
+/// Relative error bound of orient3d's floating-point evaluation (Shewchuk's
+/// orient3d "stage A"), times the permanent of the differences.
+inline constexpr double kOrient3dErrorBound = (7.0 + 56.0 * 0x1p-53) * 0x1p-53;
+
+/// orient3d's floating-point filter alone, on the differences already
+/// taken: ad = a - d, bd = b - d, cd = c - d (as doubles, rounded as
+/// written). Returns orient3d(a, b, c, d)'s sign (+1 or -1) when the filter
+/// certifies it, and 0 when it cannot decide (then call orient3d(), which
+/// decides exactly, zero included). It is the very evaluation and bound
+/// orient3d() starts with, so it never answers differently; inline so that
+/// a caller testing one point against several faces (point in tet) takes
+/// the point's differences once and pays no call for the easy faces.
+/// The bound assumes every product and sum is rounded where written: a
+/// translation unit calling it must not fuse multiply-adds
+/// (-ffp-contract=off where the target has FMA; sim/ and method/ CMake set
+/// it on their callers' files).
+inline int orient3d_filter(const Eigen::Vector3d& ad, const Eigen::Vector3d& bd, const Eigen::Vector3d& cd) {
+  const double bdycdz = bd.y() * cd.z(), bdzcdy = bd.z() * cd.y();
+  const double cdyadz = cd.y() * ad.z(), cdzady = cd.z() * ad.y();
+  const double adybdz = ad.y() * bd.z(), adzbdy = ad.z() * bd.y();
+  const double det = ad.x() * (bdycdz - bdzcdy) + bd.x() * (cdyadz - cdzady) + cd.x() * (adybdz - adzbdy);
+  const double permanent = (std::fabs(bdycdz) + std::fabs(bdzcdy)) * std::fabs(ad.x()) +
+                           (std::fabs(cdyadz) + std::fabs(cdzady)) * std::fabs(bd.x()) +
+                           (std::fabs(adybdz) + std::fabs(adzbdy)) * std::fabs(cd.x());
+  const double bound = kOrient3dErrorBound * permanent;
+  // det[a-d, b-d, c-d] = -det[b-a, c-a, d-a]: the signs swap.
+  if (det > bound) return -1;
+  if (-det > bound) return 1;
+  return 0;
+}
 
 /// Sign (+1, 0, -1) of det[b-a, c-a, d-a]; exact. See the file comment.
 int orient3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,

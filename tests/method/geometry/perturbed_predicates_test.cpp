@@ -7,8 +7,11 @@
 
 #include <catch2/catch.hpp>
 
+#include <array>
+#include <cmath>
 #include <random>
 
+#include "sim/geometry/orient3d.hpp"
 #include "sim/mesh/box_mesh.hpp"
 
 using namespace tcb;
@@ -69,6 +72,22 @@ bool inside_transformed_box(const Vec3& p_world, const Transform& t) {
     if (!(p_world[k] >= lo && p_world[k] < hi)) return false;
   }
   return true;
+}
+
+// point_in_tet_perturbed() by the definition alone, every sign by the
+// exact expansion path (no filter, no shortcut): the reference for the
+// randomized comparison below.
+int reference_point_side(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& p) {
+  if (const int s = orient3d_exact(a, b, c, p); s != 0) return s;
+  for (int axis = 0; axis < 3; ++axis)
+    if (const int s = cross_product_sign_exact(a, b, a, c, axis); s != 0) return s;
+  return 0;
+}
+
+bool reference_point_in_tet(const Vec3& p, const Vec3& v0, const Vec3& v1, const Vec3& v2, const Vec3& v3) {
+  const int s[4] = {reference_point_side(v1, v2, v3, p), reference_point_side(v0, v3, v2, p),
+                    reference_point_side(v0, v1, v3, p), reference_point_side(v0, v2, v1, p)};
+  return s[0] != 0 && s[0] == s[1] && s[1] == s[2] && s[2] == s[3];
 }
 
 }  // namespace
@@ -213,4 +232,69 @@ TEST_CASE("segment-plane parameter", "[predicates]") {
   const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
   CHECK(segment_plane_parameter(Vec3(0.2, 0.2, 1), Vec3(0.2, 0.2, -3), a, b, c) == Approx(0.25));
   CHECK(segment_plane_parameter(Vec3(0.2, 0.2, 0), Vec3(0.2, 0.2, -3), a, b, c) == 0.0);
+}
+
+TEST_CASE("perturbed point in tet: the inline filter answers as the exact path on a million near-degenerate cases",
+          "[predicates]") {
+  // point_in_tet_perturbed() takes the point's differences once and lets
+  // orient3d's filter decide the faces it can without a call (issue 14's
+  // floating-point pre-test). Its answer must be the exact one: compared
+  // with the four faces' signs from the expansion path alone on 10^6 tets
+  // and points where the filter is most likely wrong. Integer tets at scales
+  // 2^-60 .. 2^60 with the point at a vertex, on an edge's midpoint, on a
+  // face's plane (an integer combination, nudged by one unit or not), or the
+  // tet nearly flat (its fourth vertex so placed); and double tets with the
+  // point computed on a face's plane in floating point and moved 0 .. 2 ulps
+  // a coordinate.
+  std::mt19937_64 rng(20261128);
+  std::uniform_int_distribution<std::int64_t> coord(-(std::int64_t(1) << 30), std::int64_t(1) << 30);
+  std::uniform_int_distribution<std::int64_t> small(-2, 2);
+  std::uniform_int_distribution<int> kind(0, 5), vertex(0, 3), nudge(-1, 1), ulps(-2, 2), exponent(-60, 60);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), w(-0.5, 1.5);
+  constexpr int kCases = 1000000;
+  int disagree = 0, inside = 0, open_faces = 0;
+  for (int i = 0; i < kCases; ++i) {
+    std::array<Vec3, 4> v;
+    Vec3 p;
+    const int k = kind(rng);
+    if (k < 5) {
+      std::array<std::array<std::int64_t, 3>, 5> q{};  // four vertices and the point, integers
+      for (int r = 0; r < 4; ++r)
+        for (int a = 0; a < 3; ++a) q[r][a] = coord(rng);
+      const int f0 = vertex(rng), f1 = (f0 + 1) % 4, f2 = (f0 + 2) % 4;
+      const std::int64_t s = small(rng), t = small(rng);
+      const int n = k == 3 ? 0 : nudge(rng);
+      for (int a = 0; a < 3; ++a) {
+        const std::int64_t on_plane = q[f0][a] + s * (q[f1][a] - q[f0][a]) + t * (q[f2][a] - q[f0][a]);
+        switch (k) {
+          case 0: q[4][a] = q[f0][a]; break;                                          // a vertex
+          case 1: q[4][a] = (q[f0][a] + q[f1][a]) / 2; break;                         // near an edge's middle
+          case 2: case 3: q[4][a] = on_plane + n; break;                              // a face's plane
+          default: q[(f0 + 3) % 4][a] = on_plane + n; q[4][a] = q[f1][a] + s; break;  // a nearly flat tet
+        }
+      }
+      if (k == 1)  // even coordinates: the midpoint is exact
+        for (int a = 0; a < 3; ++a) q[f0][a] &= ~std::int64_t(1), q[f1][a] &= ~std::int64_t(1), q[4][a] = (q[f0][a] + q[f1][a]) / 2;
+      const double f = std::ldexp(1.0, exponent(rng));
+      for (int r = 0; r < 4; ++r) v[r] = Vec3(q[r][0] * f, q[r][1] * f, q[r][2] * f);
+      p = Vec3(q[4][0] * f, q[4][1] * f, q[4][2] * f);
+    } else {
+      const double f = std::ldexp(1.0, exponent(rng) / 2);
+      for (Vec3& x : v) x = Vec3(u(rng), u(rng), u(rng)) * f;
+      const int f0 = vertex(rng), f1 = (f0 + 1) % 4, f2 = (f0 + 2) % 4;
+      p = v[f0] + w(rng) * (v[f1] - v[f0]) + w(rng) * (v[f2] - v[f0]);
+      for (int a = 0; a < 3; ++a)
+        for (int n = ulps(rng); n != 0; n += n > 0 ? -1 : 1) p[a] = std::nextafter(p[a], n > 0 ? HUGE_VAL : -HUGE_VAL);
+    }
+    const bool answer = point_in_tet_perturbed(p, v[0], v[1], v[2], v[3]);
+    disagree += answer != reference_point_in_tet(p, v[0], v[1], v[2], v[3]);
+    inside += answer;
+    open_faces += orient3d_filter(v[1] - p, v[2] - p, v[3] - p) == 0;
+  }
+  REQUIRE(disagree == 0);
+  // Both answers are common, and the filter leaves many faces open: the
+  // cases reach the exact path (a face through the point, or nearly).
+  CHECK(inside > kCases / 20);
+  CHECK(kCases - inside > kCases / 20);
+  CHECK(open_faces > kCases / 20);
 }
