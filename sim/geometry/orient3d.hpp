@@ -52,8 +52,9 @@ inline constexpr double kOrient3dErrorBound = (7.0 + 56.0 * 0x1p-53) * 0x1p-53;
 /// the point's differences once and pays no call for the easy faces.
 /// The bound assumes every product and sum is rounded where written: a
 /// translation unit calling it must not fuse multiply-adds
-/// (-ffp-contract=off where the target has FMA; sim/ and method/ CMake set
-/// it on their callers' files).
+/// (-ffp-contract=off where the target has FMA; the CMake files set it on
+/// every file that calls it: orient3d.cpp, perturbed_predicates.cpp and its
+/// test).
 inline int orient3d_filter(const Eigen::Vector3d& ad, const Eigen::Vector3d& bd, const Eigen::Vector3d& cd) {
   const double bdycdz = bd.y() * cd.z(), bdzcdy = bd.z() * cd.y();
   const double cdyadz = cd.y() * ad.z(), cdzady = cd.z() * ad.y();
