@@ -385,39 +385,6 @@ void BM_ThreadsPaired(benchmark::State& state) {
 }
 BENCHMARK(BM_ThreadsPaired)->Args({0, 0})->Args({1, 0})->Args({0, 125})->Unit(benchmark::kMillisecond);
 
-// The surface hash on one thread, one triangle a task (insert_box() and
-// build(), the path before) against the whole stage at once (hash_all(): the
-// owners' build on the caller), side by side: BM_SurfaceHashPaired/<scene>
-// (0 the dog pair, 1 plates20) runs both cycles on one world in every
-// iteration (which goes first alternates). ratio_hash_surface: the whole
-// stage's time over one triangle a task's; time_ratio the same for the
-// cycle. The same table, work and contacts either way (collision_cycle_test).
-void BM_SurfaceHashPaired(benchmark::State& state) {
-  const bool dogs = state.range(0) == 0;
-  if (dogs && !std::filesystem::exists(std::filesystem::path(TCBENCH_SHARED_MESHES) / "dog.mesh")) {
-    state.SkipWithError("dog.mesh not found (../shared/data/meshes)");
-    return;
-  }
-  Fixture f = dogs ? dog_pair() : plates20();
-  CollisionSettings per_triangle = resolve_collision_settings(f.world, f.scene.collision, f.scene.world.dt_s);
-  per_triangle.threads = 1;
-  per_triangle.whole_surface_hash = false;
-  CollisionSettings whole = per_triangle;
-  whole.whole_surface_hash = true;
-  CollisionCycle cycles[2] = {CollisionCycle(f.world, per_triangle), CollisionCycle(f.world, whole)};
-  CollisionCycle* both[2] = {&cycles[0], &cycles[1]};
-  World* worlds[2] = {&f.world, &f.world};
-  SideBySide pair;  // 0: one triangle a task, 1: the whole stage at once
-  if (!pair.loop(state, both, worlds, false, [](std::int64_t) {}, "the two surface hashes found different contacts"))
-    return;
-  state.counters["time_ratio"] = pair.seconds[0] > 0.0 ? pair.seconds[1] / pair.seconds[0] : 0.0;
-  state.counters["ms_per_triangle"] = pair.ms_per_call(0);
-  state.counters["ms_whole"] = pair.ms_per_call(1);
-  state.counters["colliding"] = static_cast<double>(cycles[0].contacts().size());
-  pair.stage_ratios(state, "ratio_", 1, 0);
-}
-BENCHMARK(BM_SurfaceHashPaired)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
-
 // What ordering along a space-filling curve buys, measured side by side:
 // BM_OrderPaired/<numbering>/<keep>/<scene> runs the dog pair (scene 0; 1:
 // plates20, /0 only) as the file numbers it

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <optional>
 #include <tuple>
 
 #include "method/handler/heap_bytes.hpp"
@@ -394,18 +393,13 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
         }
         if (m_cursor == m_queries.size()) enter(Stage::HashSurface, world);
         break;
-      case Stage::HashSurface: {
-        std::optional<WorkerPool> caller_pool;
-        if (m_settings.whole_surface_hash && m_surface_body == 0 && m_cursor == 0 && !m_surface_bodies.empty() &&
-            surface_fits(world, budget, caller_pool)) {
-          // The whole stage at once, on the threads if there are any: the
-          // same table, charged as the one-triangle tasks below would be,
-          // none of which the budget stops. On one thread too, for the
-          // owners' build keeps its random accesses in a core's cache where
-          // insert_box() and build() reach across the whole table for every
-          // entry (spatial_hash.hpp; BM_SurfaceHashPaired measures it).
-          m_surface.hash_all(world, m_surface_bodies, m_pool ? *m_pool : *caller_pool, m_surface_work);
-          ++m_whole_surface_hashes;
+      case Stage::HashSurface:
+        if (m_pool && m_surface_body == 0 && m_cursor == 0 && !m_surface_bodies.empty() &&
+            surface_fits(world, budget)) {
+          // The whole stage on the threads: the same table, charged as the
+          // one-triangle tasks below would be, none of which the budget stops.
+          m_surface.hash_all(world, m_surface_bodies, *m_pool, m_surface_work);
+          ++m_parallel_surface_hashes;
           for (std::size_t i = 0; i + 1 < m_surface_work.size(); ++i) count_task(budget, task_stage, m_surface_work[i]);
           work = m_surface_work.back();  // not empty: some body with a surface is listed
           m_surface_body = m_surface_bodies.size();
@@ -430,7 +424,6 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
           }
         }
         break;
-      }
       case Stage::BuildSurfaceHash:
         if (m_surface.build_some(std::max<std::size_t>(1, m_granularity.build_visits_per_task))) enter(Stage::BorderDepth, world);
         break;
@@ -556,9 +549,7 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
   return m_stage == Stage::Done;
 }
 
-bool CollisionCycle::surface_fits(const World& world, const Budget& budget,
-                                  std::optional<WorkerPool>& caller_pool) const {
-  if (!m_pool) caller_pool.emplace(1);  // a pool of one runs on this thread and starts none
+bool CollisionCycle::surface_fits(const World& world, const Budget& budget) const {
   // Unlimited: it fits. A work budget: when the stage's work leaves the
   // budget unspent, so no poll among its tasks (nor the build's, under fine
   // tasks) would stop it; each triangle costs at least a unit, so with no
@@ -568,7 +559,7 @@ bool CollisionCycle::surface_fits(const World& world, const Budget& budget,
   if (budget.kind() != BudgetKind::Work) return false;
   const double left = budget.limit() - static_cast<double>(budget.spent());
   if (left <= static_cast<double>(SurfaceHash::triangle_count(world, m_surface_bodies))) return false;
-  return m_surface.work_of_all(world, m_surface_bodies, m_pool ? *m_pool : *caller_pool) < left;
+  return m_surface.work_of_all(world, m_surface_bodies, *m_pool) < left;
 }
 
 bool CollisionCycle::batch_holds(const World& world) const {

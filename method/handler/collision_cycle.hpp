@@ -88,10 +88,8 @@
 /// re-detection changes what later depths read): each depth is computed on a
 /// copy of its contact and taken in order, one a task, with its own work.
 /// A cycle resumed in a later step re-detects its points, and its depths run
-/// serially. The HashSurface stage runs as a whole, on the pool or (one
-/// thread) on the caller (SurfaceHash::hash_all: the same table, built by
-/// owners, which is faster on one thread too; CollisionSettings::
-/// whole_surface_hash) when the step's budget affords it:
+/// serially. The HashSurface stage runs on the pool as a whole
+/// (SurfaceHash::hash_all: the same table) when the step's budget affords it:
 /// without a budget, or under a work budget whose units left exceed the
 /// stage's work (summed on the pool first), so no poll among its tasks would
 /// stop it; each triangle's work is charged as its own task would be, and
@@ -256,15 +254,16 @@ class CollisionCycle {
   const CollisionSettings& settings() const { return m_settings; }
   /// Progress, for schedules and tests: tasks run in this cycle, points
   /// queried, and how many contacts (a prefix of contacts()) have their force.
-  /// Tasks run since begin(). Under fine tasks, a surface hash run as a
-  /// whole skips the uncharged BuildSurfaceHash tasks, so the count (not the
-  /// work, nor where budgets stop) depends on whole_surface_hash.
+  /// Tasks run since begin(). With threads, under fine tasks, a surface hash
+  /// run as a whole on the pool skips the uncharged BuildSurfaceHash tasks,
+  /// so the count (not the work, nor where budgets stop) depends on the
+  /// thread count.
   std::int64_t tasks_done() const { return m_tasks; }
   /// How many tet hashes completed afresh (HashTets, or BuildTetHash's end)
   /// since construction; with keep_table, the other cycles refreshed.
   std::int64_t fresh_tet_hashes() const { return m_fresh_tet_hashes; }
-  /// How many surface hashes ran as a whole (see above).
-  std::int64_t whole_surface_hashes() const { return m_whole_surface_hashes; }
+  /// How many surface hashes ran on the threads as a whole (see above).
+  std::int64_t parallel_surface_hashes() const { return m_parallel_surface_hashes; }
   /// Heap bytes of everything the cycle holds: both hashes, boxes, queries,
   /// contacts and their lookup, batches and every thread's scratch (the
   /// world's meshes and positions are not the cycle's).
@@ -295,10 +294,9 @@ class CollisionCycle {
   void start_layer_scan();
   bool scan_layer_some(const World& world, std::size_t max_contacts);
   bool batch_holds(const World& world) const;
-  /// Whether the whole HashSurface stage may run at once now (see above),
-  /// at the stage's start. Without a pool (one thread) it makes one of one
-  /// thread in caller_pool for the stage.
-  bool surface_fits(const World& world, const Budget& budget, std::optional<WorkerPool>& caller_pool) const;
+  /// Whether the whole HashSurface stage may run on the pool now (see
+  /// above); only with a pool (m_pool), at the stage's start.
+  bool surface_fits(const World& world, const Budget& budget) const;
   void query_batch(const World& world, const Budget& budget);
   std::size_t batch_size(std::size_t remaining, const Budget& budget) const;
   /// Starts a batch at the cursor (its size from batch_size(), for this
@@ -383,7 +381,7 @@ class CollisionCycle {
   std::int64_t m_batch_step = -1;       // the step whose positions and tables they were computed at
   std::vector<SurfaceHash::QueryScratch> m_surface_scratch;  // [0] the serial path's; with a pool, one a thread
   std::vector<std::uint64_t> m_surface_work;  // the threads' surface hash: each triangle's work, in walk order
-  std::int64_t m_whole_surface_hashes = 0;
+  std::int64_t m_parallel_surface_hashes = 0;
   std::int64_t m_fresh_tet_hashes = 0;
   std::int64_t m_depth_check_step = -1;  // the step depth_batch_allowed() last decided at
   bool m_depth_batchable = false;

@@ -52,12 +52,6 @@ struct CollisionSettings {
   double dt_s = 1.0e-3;  ///< the scene's step: bounds explicit damping and friction
   ResponseMode response_mode = ResponseMode::Implicit;
   int threads = 1;  ///< as CollisionDesc::threads
-  /// Whether the HashSurface stage runs as a whole when the step's budget
-  /// affords it (collision_cycle.hpp): the same table, work and results as
-  /// one triangle a task, faster on one thread as on several. false keeps
-  /// one triangle a task, for tests and for measuring the two side by side;
-  /// not a scene key, nothing observable depends on it.
-  bool whole_surface_hash = true;
   std::size_t body_count = 0;
   std::vector<ResponseParams> pair_response;  ///< body_count^2, symmetric
   /// Settings that are allowed but likely to misbehave, in words (e.g. under

@@ -113,15 +113,11 @@ TEST_CASE("threads change neither contacts, depths nor any task's work, one task
     using Tally = std::tuple<std::int64_t, std::uint64_t, std::uint64_t, std::array<std::uint64_t, kCostStages>>;
     Tally serial_tally;
     std::vector<Contact> serial_whole_contacts;
-    // The reference: one thread, the surface hashed one triangle a task
-    // even where the stage could run as a whole.
-    for (const auto& [threads, whole_surface] : {std::pair{1, false}, {1, true}, {2, true}, {3, true}}) {
-      INFO("threads " << threads << (whole_surface ? "" : ", one triangle a task"));
-      const bool reference = !whole_surface;
+    for (const int threads : {1, 2, 3}) {
+      INFO("threads " << threads);
       World w = build_world(scene);  // never stepped: every contact is detected at this step's positions
       CollisionSettings settings = test::settings_of(w, scene);
       settings.threads = threads;
-      settings.whole_surface_hash = whole_surface;
       CollisionCycle cycle(w, settings);
       cycle.begin(w);
       Trace trace;
@@ -138,11 +134,11 @@ TEST_CASE("threads change neither contacts, depths nor any task's work, one task
       Budget unlimited = Budget::unlimited();
       REQUIRE(whole.advance(w, unlimited));
       const Tally tally{whole.tasks_done(), unlimited.spent(), unlimited.max_task_work(), whole.step_costs().work};
-      // Without a budget the surface hash ran as a whole (unless told not
-      // to); one task a call never affords it.
-      CHECK(whole.whole_surface_hashes() == (whole_surface ? 1 : 0));
-      CHECK(cycle.whole_surface_hashes() == 0);
-      if (reference) {
+      // Without a budget the surface hash ran on the threads as a whole; one
+      // task a call never affords it.
+      CHECK(whole.parallel_surface_hashes() == (threads > 1 ? 1 : 0));
+      CHECK(cycle.parallel_surface_hashes() == 0);
+      if (threads == 1) {
         serial_contacts = cycle.contacts();
         serial_trace = trace;
         serial_single = found(cycle);
@@ -182,15 +178,14 @@ TEST_CASE("threads change neither contacts, depths nor any task's work, one task
   }
 }
 
-TEST_CASE("the surface hash run as a whole is charged as one triangle a task, and runs only when the budget affords it",
+TEST_CASE("the surface hash on threads is charged as one triangle a task, and runs only when the budget affords it",
           "[cycle][threads]") {
   // Work budgets of several sizes a call: where the HashSurface stage fits
-  // in what a call has left, it runs as a whole (on the threads, or on one);
-  // elsewhere one triangle a task. Every call's stage, work, largest charge
-  // and outcome, and every contact, must be those of one thread hashing one
-  // triangle a task throughout, both under the paper's tasks and under fine
-  // tasks (whose table builds then run at once).
-  std::int64_t as_whole[2] = {0, 0}, per_triangle[2] = {0, 0};  // [fine]
+  // in what a call has left, it runs on the threads as a whole; elsewhere one
+  // triangle a task. Every call's stage, work, largest charge and outcome,
+  // and every contact, must be one thread's, both under the paper's tasks
+  // and under fine tasks (whose table builds then run at once).
+  std::int64_t parallel[2] = {0, 0}, serial_with_pool[2] = {0, 0};  // [fine]
   for (const auto& [name, scene] : test::collision_scenes())
     for (const bool fine : {false, true})
       for (const std::uint64_t units : {std::uint64_t{30}, std::uint64_t{700}, std::uint64_t{20000}}) {
@@ -198,12 +193,10 @@ TEST_CASE("the surface hash run as a whole is charged as one triangle a task, an
         using Trace = std::vector<std::tuple<int, std::uint64_t, std::uint64_t, bool>>;
         Trace serial_trace;
         std::vector<Contact> serial_contacts;
-        for (const auto& [threads, whole_surface] : {std::pair{1, false}, {1, true}, {2, true}}) {
-          INFO("threads " << threads << (whole_surface ? "" : ", one triangle a task"));
+        for (const int threads : {1, 2}) {
           World w = build_world(scene);
           CollisionSettings settings = test::settings_of(w, scene);
           settings.threads = threads;
-          settings.whole_surface_hash = whole_surface;
           CycleSchedule schedule;
           if (fine) schedule.granularity = TaskGranularity::fine_tasks();
           CollisionCycle cycle(w, settings, DetectionMode::SpatialHash, schedule);
@@ -215,22 +208,21 @@ TEST_CASE("the surface hash run as a whole is charged as one triangle a task, an
             trace.emplace_back(static_cast<int>(cycle.stage()), budget.spent(), budget.max_task_work(), done);
             REQUIRE(trace.size() < 1000000);
           }
-          if (!whole_surface) {
-            CHECK(cycle.whole_surface_hashes() == 0);
+          if (threads == 1) {
             serial_trace = trace;
             serial_contacts = cycle.contacts();
           } else {
             CHECK(trace == serial_trace);
             CHECK(same_contacts(cycle.contacts(), serial_contacts));
-            as_whole[fine] += cycle.whole_surface_hashes();
-            per_triangle[fine] += cycle.whole_surface_hashes() == 0 && !serial_contacts.empty();
+            parallel[fine] += cycle.parallel_surface_hashes();
+            serial_with_pool[fine] += cycle.parallel_surface_hashes() == 0 && !serial_contacts.empty();
           }
         }
       }
   for (const int fine : {0, 1}) {
     INFO((fine ? "fine tasks" : "paper's tasks"));
-    CHECK(as_whole[fine] > 0);          // some budgets afforded the whole stage
-    CHECK(per_triangle[fine] > 0);  // and some did not
+    CHECK(parallel[fine] > 0);          // some budgets afforded the whole stage
+    CHECK(serial_with_pool[fine] > 0);  // and some did not
   }
 }
 
