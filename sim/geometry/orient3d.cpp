@@ -304,11 +304,15 @@ int orient3d_exact(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eig
 
 int orient3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
              const Eigen::Vector3d& d) {
+  if (const int s = orient3d_filter(a - d, b - d, c - d); s != 0) return s;
+  return orient3d_unfiltered(a, b, c, d);
+}
+
+int orient3d_unfiltered(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                        const Eigen::Vector3d& d) {
   const double adx = a.x() - d.x(), ady = a.y() - d.y(), adz = a.z() - d.z();
   const double bdx = b.x() - d.x(), bdy = b.y() - d.y(), bdz = b.z() - d.z();
   const double cdx = c.x() - d.x(), cdy = c.y() - d.y(), cdz = c.z() - d.z();
-  const Eigen::Vector3d ad(adx, ady, adz), bd(bdx, bdy, bdz), cd(cdx, cdy, cdz);
-  if (const int s = orient3d_filter(ad, bd, cd); s != 0) return s;
   // Exact shortcut: det is the sum of six products of three differences
   // (Leibniz); a computed difference is 0 exactly when its coordinates are
   // equal, so if every product has a zero factor the determinant is exactly 0.

@@ -74,6 +74,12 @@ inline int orient3d_filter(const Eigen::Vector3d& ad, const Eigen::Vector3d& bd,
 int orient3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
              const Eigen::Vector3d& d);
 
+/// orient3d() past its filter (the shortcut, the summation stage, the
+/// expansions): the same exact sign, for a caller that ran orient3d_filter()
+/// itself and got 0, so the filter is not evaluated twice.
+int orient3d_unfiltered(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                        const Eigen::Vector3d& d);
+
 /// Whether orient3d_exact_differences() may use the processor's fused
 /// multiply-add (two instructions a product's exact parts; Dekker's
 /// splitting takes about 17): on x86 when the processor has it, elsewhere

@@ -13,6 +13,7 @@ using tcb::cross_product_sign_exact;
 using tcb::orient3d;
 using tcb::orient3d_exact;
 using tcb::orient3d_exact_differences;
+using tcb::orient3d_unfiltered;
 using V = Eigen::Vector3d;
 
 namespace {
@@ -141,6 +142,7 @@ TEST_CASE("orient3d: filter agrees with the exact path on a million near-degener
     }
     const int filtered = orient3d(a, b, c, d), exact = orient3d_exact(a, b, c, d);
     disagree += filtered != exact;
+    disagree += orient3d_unfiltered(a, b, c, d) != exact;  // the same without its filter
     if (expected != 2) reference_wrong += exact != expected;
     naive_wrong += naive_sign(a, b, c, d) != exact;
     zeros += exact == 0;
