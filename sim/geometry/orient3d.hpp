@@ -45,8 +45,9 @@ inline constexpr double kOrient3dErrorBound = (7.0 + 56.0 * 0x1p-53) * 0x1p-53;
 /// orient3d's floating-point filter alone, on the differences already
 /// taken: ad = a - d, bd = b - d, cd = c - d (as doubles, rounded as
 /// written). Returns orient3d(a, b, c, d)'s sign (+1 or -1) when the filter
-/// certifies it, and 0 when it cannot decide (then call orient3d(), which
-/// decides exactly, zero included). It is the very evaluation and bound
+/// certifies it, and 0 when it cannot decide (then call orient3d(), or
+/// orient3d_unfiltered() to skip the filter, which decide exactly, zero
+/// included). It is the very evaluation and bound
 /// orient3d() starts with, so it never answers differently; inline so that
 /// a caller testing one point against several faces (point in tet) takes
 /// the point's differences once and pays no call for the easy faces.
@@ -75,8 +76,9 @@ int orient3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Ve
              const Eigen::Vector3d& d);
 
 /// orient3d() past its filter (the shortcut, the summation stage, the
-/// expansions): the same exact sign, for a caller that ran orient3d_filter()
-/// itself and got 0, so the filter is not evaluated twice.
+/// expansions): the same exact sign for any input, meant for a caller that
+/// ran orient3d_filter() itself and got 0, so the filter is not evaluated
+/// twice.
 int orient3d_unfiltered(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                         const Eigen::Vector3d& d);
 

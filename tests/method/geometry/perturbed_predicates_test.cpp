@@ -315,6 +315,8 @@ TEST_CASE("perturbed point in tet: the inline filter answers as the exact path o
     }
     const bool answer = point_in_tet_perturbed(p, v[0], v[1], v[2], v[3]);
     disagree += answer != reference_point_in_tet(p, v[0], v[1], v[2], v[3]);
+    // The public one-face sign, which the test above no longer calls.
+    disagree += orient3d_perturbed_point(v[1], v[2], v[3], p) != reference_point_side(v[1], v[2], v[3], p);
     inside += answer;
     open_faces += orient3d_filter(v[1] - p, v[2] - p, v[3] - p) == 0;
   }
@@ -334,7 +336,8 @@ TEST_CASE("perturbed segment-triangle: the inline filter answers as the exact pa
   // with the five signs from the expansion path alone. Integer triangles at
   // scales 2^-60 .. 2^60 with the segment through a vertex, through a point
   // of an edge, with an end on the triangle's plane (inside the triangle or
-  // not: s a + t b + u c over 4), lying in that plane, or with its ends
+  // not: s a + t b + u c over 4), lying in that plane (the tie-break puts
+  // both ends on one side: those try the ends' signs only), or with its ends
   // nudged by a unit off it; and double triangles with an end computed on
   // the plane in floating point and moved 0 .. 2 ulps a coordinate.
   std::mt19937_64 rng(28112026);
@@ -387,6 +390,8 @@ TEST_CASE("perturbed segment-triangle: the inline filter answers as the exact pa
     }
     const bool answer = segment_crosses_triangle_perturbed(p, q, t[0], t[1], t[2]);
     disagree += answer != reference_segment_crosses(p, q, t[0], t[1], t[2]);
+    // The public edge sign, which the crossing test no longer calls.
+    disagree += orient3d_perturbed_edge(p, q, t[0], t[1]) != reference_edge_side(p, q, t[0], t[1]);
     crossing += answer;
   }
   REQUIRE(disagree == 0);
