@@ -26,7 +26,8 @@
 // `colliding` shows). ms_<stage>: the cycle's wall time per stage, per cycle.
 // BM_ThreadsPaired and BM_OrderPaired measure two cycles side by side (2
 // threads against 1; the detector's tets, or the dog pair itself, ordered
-// along a Morton curve against the file's order): see their comments.
+// along a Morton curve against the file's order), BM_HashFloorPaired the
+// cycle's tet hashing beside a bare dense-grid build: see their comments.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -439,6 +440,141 @@ BENCHMARK(BM_OrderPaired)
     ->Args({0, 0, 1})
     ->Args({0, 125, 1})
     ->Unit(benchmark::kMillisecond);
+
+
+// A floor for the cycle's tet hashing, measured beside it:
+// BM_HashFloorPaired/<scene> (0 the dog pair, 1 plates20) runs a
+// budgetless one-thread cycle and a bare dense-grid build of the same tets,
+// both in every iteration (which goes first alternates). The bare build is
+// the least a table the queries could read takes: each body's tets in file
+// order, a tet left out where its box misses every other body's vertices
+// (as the cycle leaves it out), its box from its four vertices, a count a
+// cell, a prefix sum over the whole grid, a fill. It keeps no boxes, no
+// body unions, no work charge, no overflow check, no threads, nothing the
+// budgets need; it is a reference, not a detector. floor_ratio: the cycle's
+// hash_tets stage time over the bare build's (sums over the iterations);
+// entries_ratio: the bare build's entries over cells_per_tet x tets (1 when
+// it left out no tets; below 1 by the share of cells it left out).
+struct BareGrid {
+  std::int64_t first[3] = {0, 0, 0};
+  std::int64_t n[3] = {1, 1, 1};
+  std::vector<std::uint32_t> start;  // a cell's first item, then its fill cursor
+  std::vector<std::uint32_t> items;
+};
+
+std::size_t bare_grid_build(const World& world, double cell_size_m, BareGrid& g) {
+  const double inverse = 1.0 / cell_size_m;
+  // floor() by truncation and a step down (std::floor is a dozen
+  // instructions on the baseline x86-64 target); finite coordinates only.
+  const auto cell = [&](double x) {
+    const double y = x * inverse;
+    const auto t = static_cast<std::int64_t>(y);
+    return t - static_cast<std::int64_t>(static_cast<double>(t) > y);
+  };
+  std::vector<Vec3> lo(world.bodies.size()), hi(world.bodies.size());
+  Vec3 all_lo = Vec3::Constant(INFINITY), all_hi = Vec3::Constant(-INFINITY);
+  for (std::size_t b = 0; b < world.bodies.size(); ++b) {
+    lo[b] = Vec3::Constant(INFINITY);
+    hi[b] = Vec3::Constant(-INFINITY);
+    for (const Vec3& p : world.bodies[b].x_m) {
+      lo[b] = lo[b].cwiseMin(p);
+      hi[b] = hi[b].cwiseMax(p);
+    }
+    all_lo = all_lo.cwiseMin(lo[b]);
+    all_hi = all_hi.cwiseMax(hi[b]);
+  }
+  for (int a = 0; a < 3; ++a) {
+    g.first[a] = cell(all_lo[a]);
+    g.n[a] = cell(all_hi[a]) - g.first[a] + 1;
+  }
+  g.start.assign(static_cast<std::size_t>(g.n[0] * g.n[1] * g.n[2]) + 1, 0);
+  // Each body's reach: the other bodies' vertex boxes, as one box.
+  std::vector<Vec3> reach_lo(world.bodies.size(), Vec3::Constant(INFINITY)),
+      reach_hi(world.bodies.size(), Vec3::Constant(-INFINITY));
+  for (std::size_t b = 0; b < world.bodies.size(); ++b)
+    for (std::size_t o = 0; o < world.bodies.size(); ++o)
+      if (o != b) {
+        reach_lo[b] = reach_lo[b].cwiseMin(lo[o]);
+        reach_hi[b] = reach_hi[b].cwiseMax(hi[o]);
+      }
+  // Twice over the tets: count, then fill; `visit(cell, item)` per cell.
+  const auto walk = [&](auto&& visit) {
+    std::uint32_t item = 0;
+    for (std::size_t b = 0; b < world.bodies.size(); ++b) {
+      const Body& body = world.bodies[b];
+      for (std::size_t t = 0; t < body.mesh->tet_count(); ++t, ++item) {
+        if (body.mesh->is_degenerate[t]) continue;
+        const Tet& tet = body.mesh->tets[t];
+        Vec3 tlo = body.x_m[tet[0]], thi = tlo;
+        for (int k = 1; k < 4; ++k) {
+          tlo = tlo.cwiseMin(body.x_m[tet[k]]);
+          thi = thi.cwiseMax(body.x_m[tet[k]]);
+        }
+        if ((thi.array() < reach_lo[b].array()).any() || (tlo.array() > reach_hi[b].array()).any()) continue;
+        const std::int64_t i0 = cell(tlo.x()) - g.first[0], i1 = cell(thi.x()) - g.first[0];
+        const std::int64_t j0 = cell(tlo.y()) - g.first[1], j1 = cell(thi.y()) - g.first[1];
+        const std::int64_t k0 = cell(tlo.z()) - g.first[2], k1 = cell(thi.z()) - g.first[2];
+        for (std::int64_t i = i0; i <= i1; ++i)
+          for (std::int64_t j = j0; j <= j1; ++j)
+            for (std::int64_t k = k0; k <= k1; ++k)
+              visit(static_cast<std::size_t>((i * g.n[1] + j) * g.n[2] + k), item);
+      }
+    }
+  };
+  std::size_t entries = 0;
+  walk([&](std::size_t c, std::uint32_t) {
+    ++g.start[c + 1];
+    ++entries;
+  });
+  for (std::size_t c = 1; c < g.start.size(); ++c) g.start[c] += g.start[c - 1];
+  g.items.resize(entries);
+  walk([&](std::size_t c, std::uint32_t item) { g.items[g.start[c]++] = item; });
+  return entries;
+}
+
+void BM_HashFloorPaired(benchmark::State& state) {
+  const bool dogs = state.range(0) == 0;
+  if (dogs && !std::filesystem::exists(std::filesystem::path(TCBENCH_SHARED_MESHES) / "dog.mesh")) {
+    state.SkipWithError("dog.mesh not found (../shared/data/meshes)");
+    return;
+  }
+  Fixture f = dogs ? dog_pair() : plates20();
+  CollisionSettings settings = resolve_collision_settings(f.world, f.scene.collision, f.scene.world.dt_s);
+  settings.threads = 1;
+  const CellFigures cells = cell_figures(f.world, settings.detection);
+  CollisionCycle cycle(f.world, settings, DetectionMode::SpatialHash);
+  BareGrid grid;
+  double cycle_ms = 0.0, bare_ms = 0.0;
+  std::size_t entries = 0;
+  std::int64_t calls = 0;
+  for (auto _ : state) {
+    for (int k = 0; k < 2; ++k) {
+      if ((calls + k) % 2 == 0) {
+        cycle.begin(f.world);
+        cycle.start_step_costs();
+        Budget unlimited = Budget::unlimited();
+        cycle.advance(f.world, unlimited);
+        cycle_ms += cycle.step_costs().ms[static_cast<std::size_t>(CostStage::HashTets)];
+      } else {
+        const auto start = std::chrono::steady_clock::now();
+        entries = bare_grid_build(f.world, settings.detection.cell_size_m, grid);
+        benchmark::DoNotOptimize(grid.items.data());
+        bare_ms += 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      }
+    }
+    ++calls;
+  }
+  std::size_t tets = 0;
+  for (const Body& b : f.world.bodies) tets += b.mesh->tet_count();
+  const double n = static_cast<double>(std::max<std::int64_t>(calls, 1));
+  state.counters["ms_hash_tets"] = cycle_ms / n;
+  state.counters["ms_bare"] = bare_ms / n;
+  state.counters["floor_ratio"] = bare_ms > 0.0 ? cycle_ms / bare_ms : 0.0;
+  state.counters["bare_ns_per_tet"] = 1e6 * bare_ms / n / static_cast<double>(tets);
+  state.counters["entries_ratio"] = static_cast<double>(entries) / (cells.cells_per_tet * static_cast<double>(tets));
+  state.counters["grid_cells"] = static_cast<double>(grid.start.size() - 1);
+}
+BENCHMARK(BM_HashFloorPaired)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
