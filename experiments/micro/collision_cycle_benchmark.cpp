@@ -27,7 +27,8 @@
 // BM_ThreadsPaired and BM_OrderPaired measure two cycles side by side (2
 // threads against 1; the detector's tets, or the dog pair itself, ordered
 // along a Morton curve against the file's order), BM_HashFloorPaired the
-// cycle's tet hashing beside a bare dense-grid build: see their comments.
+// cycle's tet hashing beside a bare dense-grid build, BM_PointGridPaired its
+// hashing and queries beside a bare grid of the points: see their comments.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -41,6 +42,7 @@
 
 #include "experiments/scene/scene_file.hpp"
 #include "method/detection/morton_order.hpp"
+#include "method/geometry/perturbed_predicates.hpp"
 #include "method/handler/collision_cycle.hpp"
 #include "sim/mesh/medit_io.hpp"
 
@@ -575,6 +577,181 @@ void BM_HashFloorPaired(benchmark::State& state) {
   state.counters["grid_cells"] = static_cast<double>(grid.start.size() - 1);
 }
 BENCHMARK(BM_HashFloorPaired)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+// What hashing the points instead of the tets would cost, measured beside
+// the paper's tet hash: BM_PointGridPaired/<scene> (0 the dog pair, 1
+// plates20) runs a budgetless one-thread cycle and a bare point grid, both
+// in every iteration (which goes first alternates). The point grid enters
+// every vertex into the one cell it lies in (count, prefix sum, fill: one
+// entry a point, where the tet hash enters each tet into cells_per_tet
+// cells); then each tet, left out where its box misses every other body's
+// vertices, visits the cells its box covers and tests the other bodies'
+// points there not yet found inside: its box, then the method's exact
+// point_in_tet_perturbed. It answers only which vertices are inside, not
+// which tet (the cycle's smallest file id) nor any depth, charges no work,
+// and would not fit the interruptible handler's tasks, which are per point:
+// a variant's floor, not the paper's method. ratio: the cycle's hash_tets +
+// query_points stage time over the point grid's (sums over the iterations).
+// Stops with an error where the two find different vertices inside.
+struct PointGrid {
+  std::int64_t first[3] = {0, 0, 0};
+  std::int64_t n[3] = {1, 1, 1};
+  std::vector<std::uint32_t> start;  // a cell's first point, after the fill
+  std::vector<std::uint32_t> points;  // global vertex ids (body offsets + vertex)
+  std::vector<Vec3> positions;        // the points' positions, in the same order
+  std::vector<std::uint32_t> owner;   // the points' bodies, in the same order
+};
+
+std::size_t bare_point_grid_inside(const World& world, double cell_size_m, PointGrid& g, std::vector<char>& inside) {
+  const double inverse = 1.0 / cell_size_m;
+  const auto cell = [&](double x) {  // floor, as bare_grid_build's
+    const double y = x * inverse;
+    const auto t = static_cast<std::int64_t>(y);
+    return t - static_cast<std::int64_t>(static_cast<double>(t) > y);
+  };
+  const std::size_t bodies = world.bodies.size();
+  std::vector<Vec3> lo(bodies, Vec3::Constant(INFINITY)), hi(bodies, Vec3::Constant(-INFINITY));
+  std::vector<std::uint32_t> offset(bodies + 1, 0);
+  Vec3 all_lo = Vec3::Constant(INFINITY), all_hi = Vec3::Constant(-INFINITY);
+  for (std::size_t b = 0; b < bodies; ++b) {
+    for (const Vec3& p : world.bodies[b].x_m) {
+      lo[b] = lo[b].cwiseMin(p);
+      hi[b] = hi[b].cwiseMax(p);
+    }
+    all_lo = all_lo.cwiseMin(lo[b]);
+    all_hi = all_hi.cwiseMax(hi[b]);
+    offset[b + 1] = offset[b] + static_cast<std::uint32_t>(world.bodies[b].x_m.size());
+  }
+  for (int a = 0; a < 3; ++a) {
+    g.first[a] = cell(all_lo[a]);
+    g.n[a] = cell(all_hi[a]) - g.first[a] + 1;
+  }
+  const auto cell_index = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
+    return static_cast<std::size_t>((i * g.n[1] + j) * g.n[2] + k);
+  };
+  const auto cell_of_point = [&](const Vec3& p) {
+    return cell_index(cell(p.x()) - g.first[0], cell(p.y()) - g.first[1], cell(p.z()) - g.first[2]);
+  };
+  g.start.assign(static_cast<std::size_t>(g.n[0] * g.n[1] * g.n[2]) + 1, 0);
+  for (const Body& body : world.bodies)
+    for (const Vec3& p : body.x_m) ++g.start[cell_of_point(p) + 1];
+  for (std::size_t c = 1; c < g.start.size(); ++c) g.start[c] += g.start[c - 1];
+  g.points.resize(offset[bodies]);
+  g.positions.resize(offset[bodies]);
+  g.owner.resize(offset[bodies]);
+  {
+    std::vector<std::uint32_t> cursor(g.start.begin(), g.start.end() - 1);
+    for (std::size_t b = 0; b < bodies; ++b)
+      for (std::size_t v = 0; v < world.bodies[b].x_m.size(); ++v) {
+        const Vec3& p = world.bodies[b].x_m[v];
+        const std::uint32_t e = cursor[cell_of_point(p)]++;
+        g.points[e] = offset[b] + static_cast<std::uint32_t>(v);
+        g.positions[e] = p;
+        g.owner[e] = static_cast<std::uint32_t>(b);
+      }
+  }
+  std::vector<Vec3> reach_lo(bodies, Vec3::Constant(INFINITY)), reach_hi(bodies, Vec3::Constant(-INFINITY));
+  for (std::size_t b = 0; b < bodies; ++b)
+    for (std::size_t o = 0; o < bodies; ++o)
+      if (o != b) {
+        reach_lo[b] = reach_lo[b].cwiseMin(lo[o]);
+        reach_hi[b] = reach_hi[b].cwiseMax(hi[o]);
+      }
+  inside.assign(offset[bodies], 0);
+  std::size_t found = 0;
+  for (std::size_t b = 0; b < bodies; ++b) {
+    const Body& body = world.bodies[b];
+    const auto& x = body.x_m;
+    for (std::size_t t = 0; t < body.mesh->tet_count(); ++t) {
+      if (body.mesh->is_degenerate[t]) continue;
+      const Tet& tet = body.mesh->tets[t];
+      Vec3 tlo = x[tet[0]], thi = tlo;
+      for (int k = 1; k < 4; ++k) {
+        tlo = tlo.cwiseMin(x[tet[k]]);
+        thi = thi.cwiseMax(x[tet[k]]);
+      }
+      if ((thi.array() < reach_lo[b].array()).any() || (tlo.array() > reach_hi[b].array()).any()) continue;
+      const std::int64_t i0 = std::max<std::int64_t>(cell(tlo.x()) - g.first[0], 0),
+                         i1 = std::min<std::int64_t>(cell(thi.x()) - g.first[0], g.n[0] - 1);
+      const std::int64_t j0 = std::max<std::int64_t>(cell(tlo.y()) - g.first[1], 0),
+                         j1 = std::min<std::int64_t>(cell(thi.y()) - g.first[1], g.n[1] - 1);
+      const std::int64_t k0 = std::max<std::int64_t>(cell(tlo.z()) - g.first[2], 0),
+                         k1 = std::min<std::int64_t>(cell(thi.z()) - g.first[2], g.n[2] - 1);
+      for (std::int64_t i = i0; i <= i1; ++i)
+        for (std::int64_t j = j0; j <= j1; ++j)
+          for (std::int64_t k = k0; k <= k1; ++k) {
+            const std::size_t c = cell_index(i, j, k);
+            for (std::uint32_t e = g.start[c]; e < g.start[c + 1]; ++e) {
+              if (g.owner[e] == b) continue;
+              const Vec3& p = g.positions[e];
+              if ((p.array() < tlo.array()).any() || (p.array() > thi.array()).any()) continue;
+              const std::uint32_t id = g.points[e];
+              if (inside[id]) continue;
+              if (point_in_tet_perturbed(p, x[tet[0]], x[tet[1]], x[tet[2]], x[tet[3]])) {
+                inside[id] = 1;
+                ++found;
+              }
+            }
+          }
+    }
+  }
+  return found;
+}
+
+void BM_PointGridPaired(benchmark::State& state) {
+  const bool dogs = state.range(0) == 0;
+  if (dogs && !std::filesystem::exists(std::filesystem::path(TCBENCH_SHARED_MESHES) / "dog.mesh")) {
+    state.SkipWithError("dog.mesh not found (../shared/data/meshes)");
+    return;
+  }
+  Fixture f = dogs ? dog_pair() : plates20();
+  CollisionSettings settings = resolve_collision_settings(f.world, f.scene.collision, f.scene.world.dt_s);
+  settings.threads = 1;
+  CollisionCycle cycle(f.world, settings, DetectionMode::SpatialHash);
+  PointGrid grid;
+  std::vector<char> inside;
+  double cycle_ms = 0.0, grid_ms = 0.0;
+  std::size_t found = 0, colliding = 0;
+  std::int64_t calls = 0;
+  for (auto _ : state) {
+    for (int k = 0; k < 2; ++k) {
+      if ((calls + k) % 2 == 0) {
+        cycle.begin(f.world);
+        cycle.start_step_costs();
+        Budget unlimited = Budget::unlimited();
+        cycle.advance(f.world, unlimited);
+        cycle_ms += cycle.step_costs().ms[static_cast<std::size_t>(CostStage::HashTets)] +
+                    cycle.step_costs().ms[static_cast<std::size_t>(CostStage::QueryPoints)];
+        colliding = cycle.contacts().size();
+      } else {
+        const auto start = std::chrono::steady_clock::now();
+        found = bare_point_grid_inside(f.world, settings.detection.cell_size_m, grid, inside);
+        benchmark::DoNotOptimize(inside.data());
+        grid_ms += 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      }
+    }
+    ++calls;
+    bool same = found == colliding;
+    for (const Contact& c : cycle.contacts()) {
+      std::size_t id = static_cast<std::size_t>(c.vertex);
+      for (std::int32_t b = 0; b < c.object; ++b) id += f.world.bodies[static_cast<std::size_t>(b)].x_m.size();
+      same = same && inside[id];
+    }
+    if (!same) {
+      state.SkipWithError("the point grid and the cycle found different vertices inside");
+      return;
+    }
+  }
+  std::size_t tets = 0;
+  for (const Body& b : f.world.bodies) tets += b.mesh->tet_count();
+  const double n = static_cast<double>(std::max<std::int64_t>(calls, 1));
+  state.counters["ms_hash_and_query"] = cycle_ms / n;
+  state.counters["ms_point_grid"] = grid_ms / n;
+  state.counters["ratio"] = grid_ms > 0.0 ? cycle_ms / grid_ms : 0.0;
+  state.counters["point_grid_ns_per_tet"] = 1e6 * grid_ms / n / static_cast<double>(tets);
+  state.counters["colliding"] = static_cast<double>(colliding);
+}
+BENCHMARK(BM_PointGridPaired)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
