@@ -92,7 +92,7 @@ namespace {
 struct RunKey {
   std::string name;  ///< path below DIR
   std::filesystem::path folder;
-  std::string scene, method_label, budget, response, status, reason;
+  std::string scene, method_label, budget, response, mesh_order, status, reason;
   std::uint64_t seed = 0;
   std::int64_t steps = 0;
   nlohmann::json overrides;
@@ -108,6 +108,7 @@ RunKey key_of(std::string name, const nlohmann::json& run) {
   k.method_label = run.value("method_label", run.value("method", ""));  // tcbench.run/1 had no label
   k.budget = run.value("budget", nlohmann::json::object()).value("label", "none");
   k.response = run.value("response", "explicit");  // runs recorded before the field were explicit
+  k.mesh_order = mesh_order_of(run);
   k.seed = run.value("seed", std::uint64_t{0});
   k.steps = run.value("steps_requested", run.value("steps", std::int64_t{0}));
   k.overrides = run.value("overrides", nlohmann::json::array());
@@ -133,7 +134,8 @@ std::vector<std::string> sorted_strings(const nlohmann::json& list) {
 const RunKey* reference_of(const RunKey& run, const std::string& label, const std::vector<RunKey>& runs) {
   for (const RunKey& o : runs)
     if (o.folder == run.folder && o.scene == run.scene && o.method_label == label && o.budget == "none" &&
-        o.seed == run.seed && o.response == run.response && o.steps == run.steps && o.overrides == run.overrides)
+        o.seed == run.seed && o.response == run.response && o.mesh_order == run.mesh_order && o.steps == run.steps &&
+        o.overrides == run.overrides)
       return &o;
   return nullptr;
 }

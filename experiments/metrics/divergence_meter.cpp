@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "sim/io/input_error.hpp"
+#include "sim/mesh/curve_numbering.hpp"
 
 namespace tcb {
 
@@ -42,9 +43,10 @@ void DivergenceMeter::on_step(StepContext& ctx) {
   const std::size_t bodies = ctx.world.bodies.size();
   m_x.resize(bodies);
   m_v.resize(bodies);
-  for (std::size_t b = 0; b < bodies; ++b) {
-    as_float32(ctx.world.bodies[b].x_m, m_buffer, m_x[b]);
-    as_float32(ctx.world.bodies[b].v_m_per_s, m_buffer, m_v[b]);
+  for (std::size_t b = 0; b < bodies; ++b) {  // in the file's numbering, as the reference wrote them
+    const Body& body = ctx.world.bodies[b];
+    as_float32(in_file_order(*body.mesh, body.x_m, m_file_order), m_buffer, m_x[b]);
+    as_float32(in_file_order(*body.mesh, body.v_m_per_s, m_file_order), m_buffer, m_v[b]);
   }
   const Divergence d = compare_states({m_x, m_v}, {m_next->x_m, m_next->v_m_per_s}, m_reader->masses_kg(), m_dynamic);
   ctx.row.set("div_rms_m", d.rms_m);

@@ -41,6 +41,7 @@ class DivergenceMeter final : public Meter {
   std::vector<char> m_dynamic;
   std::vector<std::vector<Vec3>> m_x, m_v;  // this run's state at float32 precision
   std::vector<float> m_buffer;
+  std::vector<Vec3> m_file_order;  // a renumbered body's state in its file's order, as the reference has it
   std::int64_t m_compared = 0, m_last_step = 0;
   Divergence m_final, m_max;
 };

@@ -115,7 +115,10 @@ FullCost full_handling_cost(const SkinnedFinger& finger, const std::vector<Sampl
   desc.objects.push_back(object);
   World world = build_world(desc);
   Body& body = world.bodies.front();
-  body.mesh = finger.mesh();  // the same box, with the bones as parts
+  // The same box, with the bones as parts: the generator and the finger
+  // number its vertices alike, which holds because desc.mesh_order is the
+  // file's (a "curve" desc would renumber the generated box only).
+  body.mesh = finger.mesh();
   const CollisionSettings settings = resolve_collision_settings(world, CollisionDesc{}, desc.dt_s);
   const auto handler = make_handler("full");
   handler->init(world, settings);

@@ -7,7 +7,17 @@
 #include <limits>
 #include <unordered_map>
 
+#include "sim/mesh/curve_numbering.hpp"
+
 namespace tcb {
+namespace {
+
+// A vertex as the file numbers it (sim/mesh/curve_numbering.hpp).
+std::int32_t file_vertex_of(const World& world, std::int32_t body, std::int32_t vertex) {
+  return file_vertex(*world.bodies[static_cast<std::size_t>(body)].mesh, vertex);
+}
+
+}  // namespace
 
 static_assert(std::endian::native == std::endian::little, "replay.bin is written little-endian, natively");
 
@@ -52,7 +62,8 @@ ReplayWriter::ReplayWriter(const std::filesystem::path& dir, const World& world,
   m_manifest["triangles"] = {{"offset", m_bytes}, {"count", triangles.size() / 3}};
   for (const std::uint32_t i : triangles) put(i);
   m_manifest["surface_map"] = {{"offset", m_bytes}, {"count", m_surface.size()}};
-  for (const auto& [body, vertex] : m_surface) put(body), put(vertex);
+  for (const auto& [body, vertex] : m_surface)  // vertices in the file's numbering, as every output names them
+    put(body), put(static_cast<std::uint32_t>(file_vertex(*world.bodies[body].mesh, static_cast<std::int32_t>(vertex))));
   m_manifest["layouts"] = {
       {"positions", "float32 x 3 per surface vertex (m)"},
       {"contact",
@@ -89,7 +100,7 @@ void ReplayWriter::record(std::int64_t step, const World& world, const Collision
   frame["contacts"] = {{"offset", m_bytes}, {"count", contacts.size()}};
   constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
   for (const Contact& c : contacts) {
-    put(c.object), put(c.vertex), put(c.other), put(c.tet);
+    put(c.object), put(file_vertex_of(world, c.object, c.vertex)), put(c.other), put(c.tet);
     put(c.depth_source == DepthSource::None ? kNaN : static_cast<float>(c.depth_m));
     put_position(c.direction);
     put_position(world.bodies[static_cast<std::size_t>(c.object)].x_m[static_cast<std::size_t>(c.vertex)]);
@@ -101,14 +112,14 @@ void ReplayWriter::record(std::int64_t step, const World& world, const Collision
   if (oracle) {
     frame["oracle"] = {{"offset", m_bytes}, {"count", oracle->inside.size()}};
     for (const OraclePoint& p : oracle->inside) {
-      put(p.object), put(p.vertex), put(p.other);
+      put(p.object), put(file_vertex_of(world, p.object, p.vertex)), put(p.other);
       put(static_cast<float>(p.depth_m));
       put_position(world.bodies[static_cast<std::size_t>(p.object)].x_m[static_cast<std::size_t>(p.vertex)]);
     }
     // Touching points: the metrics count a method's point there neither
     // right nor wrong (oracle_comparison.cpp), and so must the viewer.
     frame["boundary"] = {{"offset", m_bytes}, {"count", oracle->boundary.size()}};
-    for (const auto& [object, vertex] : oracle->boundary) put(object), put(vertex);
+    for (const auto& [object, vertex] : oracle->boundary) put(object), put(file_vertex_of(world, object, vertex));
   } else {
     frame["oracle"] = nullptr;
     frame["boundary"] = nullptr;

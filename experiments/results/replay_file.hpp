@@ -24,6 +24,10 @@
 ///                      exactly on another body's surface and inside none
 ///                      (same frames): touching, counted neither way by
 ///                      recall and precision
+/// Every vertex index written (surface_map, contacts, oracle, boundary) is
+/// in the mesh file's numbering, also when the run renumbered its vertices
+/// (scene mesh_order "curve", sim/mesh/curve_numbering.hpp); tets are never
+/// renumbered.
 /// With --record-debug (debug_cell_size_m set), per frame also:
 ///          aabbs       float32 x 6 per tet of every body in order (min xyz,
 ///                      max xyz; m): the tets' boxes at the frame's positions

@@ -14,11 +14,19 @@ nlohmann::json configuration_of(const nlohmann::json& run) {
           {"settings", run.value("settings", nlohmann::json::object())},
           {"budget", run.value("budget", nlohmann::json::object()).value("label", "none")},
           {"response", run.value("response", "explicit")},
+          // Renumbered vertices (world.mesh_order "curve") change results in
+          // rounding and tie-breaks: not repeats of the file's numbering.
+          {"mesh_order", mesh_order_of(run)},
           {"steps", run.value("steps_requested", run.value("steps", std::int64_t{0}))},
           {"overrides", run.value("overrides", nlohmann::json::array())}};
 }
 
 }  // namespace
+
+std::string mesh_order_of(const nlohmann::json& record) {
+  const nlohmann::json world = record.value("world", nlohmann::json::object());
+  return world.is_object() ? world.value("mesh_order", "file") : "file";
+}
 
 std::vector<CollectedRun> collect_runs(const std::filesystem::path& dir) {
   std::vector<CollectedRun> runs;
@@ -50,6 +58,7 @@ std::string configuration_label(const nlohmann::json& record) {
   std::string label = c["scene"].get<std::string>() + " " + c["method"].get<std::string>() + " " +
                       c["budget"].get<std::string>() + " " + c["response"].get<std::string>() + " " +
                       std::to_string(c["steps"].get<std::int64_t>()) + " steps";
+  if (c["mesh_order"] != "file") label += " mesh_order=" + c["mesh_order"].get<std::string>();
   if (!c["overrides"].empty()) {
     std::string sets;
     for (const auto& o : c["overrides"]) {

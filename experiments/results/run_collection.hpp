@@ -25,9 +25,13 @@ std::vector<CollectedRun> collect_runs(const std::filesystem::path& dir);
 
 /// What makes runs repeats of one configuration: everything the run was told
 /// except its seed (scene, method and its settings, budget label, response,
-/// steps requested, scene overrides). A run recorded before a field existed
+/// mesh order, steps requested, scene overrides). A run recorded before a field existed
 /// gets that field's old meaning (tcbench.run/1: label = method, explicit response).
 std::string configuration_key(const nlohmann::json& record);
+
+/// The run's world.mesh_order ("file" or "curve"); "file" for a run recorded
+/// before the field (they were all in the file's numbering).
+std::string mesh_order_of(const nlohmann::json& record);
 
 /// The same in words: "plates20 interruptible full-work/3 implicit 2000 steps [collision.cell_size=auto*2]".
 std::string configuration_label(const nlohmann::json& record);

@@ -3,6 +3,7 @@
 #include <cstring>
 
 #include "sim/io/input_error.hpp"
+#include "sim/mesh/curve_numbering.hpp"
 
 namespace tcb {
 namespace {
@@ -46,8 +47,9 @@ TrajectoryWriter::TrajectoryWriter(const std::filesystem::path& path, const Worl
   put(out, static_cast<std::uint32_t>(world.bodies.size()));
   for (const Body& b : world.bodies) {
     put(out, static_cast<std::uint32_t>(b.x_m.size()));
-    std::vector<double> masses = b.mass_kg;
+    std::vector<double> masses = b.mass_kg, scratch;
     masses.resize(b.x_m.size(), 0.0);  // passive bodies may carry none
+    masses = in_file_order(*b.mesh, masses, scratch);
     out.write(reinterpret_cast<const char*>(masses.data()), static_cast<std::streamsize>(masses.size() * sizeof(double)));
   }
 }
@@ -58,7 +60,7 @@ void TrajectoryWriter::write_step(const World& world) {
   put(out, static_cast<std::int64_t>(world.step_index));
   for (const Body& b : world.bodies) {
     for (const std::vector<Vec3>* field : {&b.x_m, &b.v_m_per_s}) {
-      to_float_buffer(*field, m_scratch);
+      to_float_buffer(in_file_order(*b.mesh, *field, m_file_order), m_scratch);
       out.write(reinterpret_cast<const char*>(m_scratch.data()), static_cast<std::streamsize>(m_scratch.size() * sizeof(float)));
     }
   }

@@ -7,6 +7,8 @@
 ///   per body: uint32 vertex_count, float64 mass_kg[vertex_count]
 ///   per frame (steps K, 2K, ... after the step, as steps.csv counts):
 ///     int64 step, then per body float32 x_m[3 n], float32 v_m_per_s[3 n]
+/// Vertices are in the mesh file's numbering, also when the run renumbered
+/// them (scene mesh_order "curve", sim/mesh/curve_numbering.hpp).
 /// float32 keeps a 0.4 m coordinate to about 3e-8 m: the floor of any
 /// distance read from this file. Written to trajectory.bin.tmp and renamed
 /// when the run finishes (stable or not), like steps.csv.
@@ -45,6 +47,7 @@ class TrajectoryWriter {
   AtomicFile m_file;
   int m_every;
   std::vector<float> m_scratch;
+  std::vector<Vec3> m_file_order;  ///< a renumbered body's values in its file's order
 };
 
 struct TrajectoryFrame {

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "sim/io/atomic_file.hpp"
+#include "sim/mesh/curve_numbering.hpp"
 
 namespace tcb {
 namespace {
@@ -33,16 +34,20 @@ void RunRecord::write_step(StepRow row, const World& world) {
   if (m_trajectory) m_trajectory->write_step(world);
 }
 
-// All bodies of the world as one VTU frame.
+// All bodies of the world as one VTU frame, each body's points in its mesh
+// file's numbering (sim/mesh/curve_numbering.hpp).
 void RunRecord::write_frame(const World& world) {
   std::vector<Vec3> x, v;
   std::vector<Tet> tets;
   for (const Body& b : world.bodies) {
     const auto offset = static_cast<std::int32_t>(x.size());
-    x.insert(x.end(), b.x_m.begin(), b.x_m.end());
-    v.insert(v.end(), b.v_m_per_s.begin(), b.v_m_per_s.end());
+    std::vector<Vec3> scratch;
+    const std::vector<Vec3>& bx = in_file_order(*b.mesh, b.x_m, scratch);
+    x.insert(x.end(), bx.begin(), bx.end());
+    const std::vector<Vec3>& bv = in_file_order(*b.mesh, b.v_m_per_s, scratch);
+    v.insert(v.end(), bv.begin(), bv.end());
     for (Tet t : b.mesh->tets) {
-      for (auto& i : t) i += offset;
+      for (auto& i : t) i = file_vertex(*b.mesh, i) + offset;
       tets.push_back(t);
     }
   }

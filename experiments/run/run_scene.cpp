@@ -41,7 +41,10 @@ Json world_json(const SceneDesc& scene, const World& world) {
                        {"model", b.passive ? "none" : to_string(b.material.model)},
                        {"integrator", b.passive ? "none" : to_string(b.material.integrator)}});
   }
-  return Json{{"name", scene.name}, {"file", scene.path.string()}, {"ground", scene.world.ground.has_value()},
+  return Json{{"name", scene.name},
+              {"file", scene.path.string()},
+              {"ground", scene.world.ground.has_value()},
+              {"mesh_order", scene.world.mesh_order == MeshOrder::Curve ? "curve" : "file"},
               {"objects", objects}};
 }
 

@@ -235,6 +235,12 @@ SceneDesc parse_scene(const std::string& text, const std::filesystem::path& path
     scene.world.gravity_m_per_s2 = r.vec3("gravity").value_or(scene.world.gravity_m_per_s2);
     scene.max_speed_m_per_s = r.positive("max_speed", scene.max_speed_m_per_s);
     scene.max_energy_gain = r.positive("max_energy_gain", scene.max_energy_gain);
+    if (const auto order = r.string("mesh_order")) {
+      if (*order == "file") scene.world.mesh_order = MeshOrder::File;
+      else if (*order == "curve") scene.world.mesh_order = MeshOrder::Curve;
+      else r.fail("mesh_order", "is '" + *order + "'; must be \"file\" (the file's vertex numbering) or \"curve\" "
+                                "(renumbered along a Morton curve at load)");
+    }
     r.finish();
   }
   if (const toml::table* g = top.table("ground")) {

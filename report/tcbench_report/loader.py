@@ -62,6 +62,9 @@ class Run:
     budget_kind = property(lambda self: self.budget.get("kind") or "none")
     budget_value = property(lambda self: self.budget.get("value"))
     budget_label = property(lambda self: self.budget.get("label") or "none")
+    # How the simulation numbered the meshes' vertices (world.mesh_order): "curve" renumbers them, which
+    # changes results in rounding and tie-breaks; runs recorded before the field were in the file's order.
+    mesh_order = property(lambda self: (self.record.get("world") or {}).get("mesh_order") or "file")
 
     @property
     def response(self):

@@ -19,7 +19,8 @@ def perturbation_override(override):
 
 
 def setup(run):
-    """What makes two runs the same experiment: scene, RNG seed, contact response and scene overrides.
+    """What makes two runs the same experiment: scene, RNG seed, contact response, mesh order and scene
+    overrides.
 
     Overrides are scene-only in tcbench.run/2 (method settings moved to
     "settings"), so their order is the only thing to normalise. The response
@@ -29,7 +30,7 @@ def setup(run):
     and an older run that was explicit without saying so are one experiment.
     """
     overrides = tuple(sorted(o for o in run.overrides if response_override(o) is None))
-    return run.scene, run.seed, run.response, overrides
+    return run.scene, run.seed, run.response, run.mesh_order, overrides
 
 
 def is_reference(run):
@@ -110,8 +111,8 @@ def is_noise_floor(run):
 def floor_setup(run):
     """setup(run) with the perturbation left out: the experiment a noise-floor run is the floor of. The
     floor run's other overrides (the scene's --set strings) stay and must match."""
-    scene, seed, response, overrides = setup(run)
-    return scene, seed, response, tuple(o for o in overrides if not perturbation_override(o))
+    scene, seed, response, mesh_order, overrides = setup(run)
+    return scene, seed, response, mesh_order, tuple(o for o in overrides if not perturbation_override(o))
 
 
 def noise_floor(run, runs):

@@ -129,10 +129,10 @@ def outcome_text(what, k, n):
 
 def configuration(run):
     """What makes runs repeats of each other: everything but the seed (the C++ side's configuration_of in
-    experiments/results/run_collection.cpp: scene, method label, settings, budget label, response, steps
-    requested, overrides; the overrides sorted here, so their order does not split a configuration)."""
+    experiments/results/run_collection.cpp: scene, method label, settings, budget label, response, mesh order,
+    steps requested, overrides; the overrides sorted here, so their order does not split a configuration)."""
     settings = tuple(sorted((k, str(v)) for k, v in (run.record.get("settings") or {}).items()))
-    return (run.scene, run.method_label, settings, run.budget_label, run.response,
+    return (run.scene, run.method_label, settings, run.budget_label, run.response, run.mesh_order,
             run.record.get("steps_requested", run.record.get("steps")), tuple(sorted(run.overrides)))
 
 

@@ -18,13 +18,15 @@ Z = 1.959963984540054
 
 
 def run(name, method="interruptible", budget="full-work/3", seed=0, overrides=(), perturbation=None, scene="plates20",
-        steps=100, settings=None, response="implicit", **summary):
+        steps=100, settings=None, response="implicit", mesh_order=None, **summary):
     kind = "none" if budget == "none" else "work"
     record = {"scene": scene, "method": method, "seed": seed, "response": response, "steps": steps,
               "overrides": list(overrides), "settings": settings or {}, "budget": {"kind": kind, "label": budget},
               "summary": summary, "status": "ok"}
     if perturbation is not None:
         record["perturbation"] = perturbation
+    if mesh_order is not None:
+        record["world"] = {"mesh_order": mesh_order}
     return Run("/nonexistent", record, name)
 
 
@@ -155,7 +157,10 @@ class Configurations(unittest.TestCase):
         a = run("a", seed=0, overrides=self.JITTERED)
         b = run("b", seed=3, overrides=list(reversed(self.JITTERED)))  # the order of the --set strings
         self.assertEqual(statistics.configuration(a), statistics.configuration(b))
-        for other in (run("c", budget="full-work/6", overrides=self.JITTERED),
+        # A run that says "file" is one of a run recorded before the field.
+        self.assertEqual(statistics.configuration(a),
+                         statistics.configuration(run("b2", mesh_order="file", overrides=self.JITTERED)))
+        for other in (run("m", mesh_order="curve", overrides=self.JITTERED),run("c", budget="full-work/6", overrides=self.JITTERED),
                       run("d", method="full", budget="none", overrides=self.JITTERED),
                       run("e", response="explicit", overrides=self.JITTERED),
                       run("f", steps=300, overrides=self.JITTERED),

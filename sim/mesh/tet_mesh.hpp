@@ -64,6 +64,12 @@ struct TetMesh {
   /// simulation or to the method; the oracle uses them to tell the fold a
   /// vertex entered from the vertex's own neighbourhood (oracle/self_depth.hpp).
   std::vector<std::int32_t> tet_part;
+  /// Per vertex, its index in the file it was loaded from, when the vertices
+  /// were renumbered at load (sim/mesh/curve_numbering.hpp); empty: the
+  /// file's numbering. Every output that names or lists vertices maps
+  /// through it (file_vertex() and in_file_order() there), so files stay
+  /// in the file's numbering whatever the simulation's.
+  std::vector<std::int32_t> file_vertex_id;
 
   std::vector<Edge> edges;                  ///< unique, each (lo, hi), sorted
   Adjacency vertex_neighbours;              ///< vertex -> vertices sharing an edge

@@ -7,6 +7,7 @@
 
 #include "sim/io/input_error.hpp"
 #include "sim/latent/latent_path.hpp"
+#include "sim/mesh/curve_numbering.hpp"
 #include "sim/mesh/load_mesh.hpp"
 
 namespace tcb {
@@ -30,7 +31,9 @@ std::shared_ptr<const TetMesh> load_cached(const ObjectDesc& object, const World
   if (auto it = cache.find(key); it != cache.end()) return it->second;
   try {
     if (object.mesh.rfind(kFingerPrefix, 0) == 0) return finger_of(object)->mesh();
-    auto mesh = std::make_shared<const TetMesh>(load_mesh(object.mesh, object.base_dir));
+    TetMesh loaded = load_mesh(object.mesh, object.base_dir);
+    if (desc.mesh_order == MeshOrder::Curve) loaded = vertices_along_curve(loaded);
+    auto mesh = std::make_shared<const TetMesh>(std::move(loaded));
     cache.emplace(key, mesh);
     return mesh;
   } catch (const InputError& e) {

@@ -65,8 +65,18 @@ struct ObjectDesc {
   std::string latent_model;
 };
 
+/// How the vertices of a file's mesh are numbered in the simulation.
+enum class MeshOrder {
+  File,   ///< as the file numbers them (the default, and the paper's runs)
+  Curve,  ///< renumbered along a Morton curve at load (sim/mesh/curve_numbering.hpp)
+};
+
 struct WorldDesc {
   std::filesystem::path path;  ///< the file it came from, for errors (empty when built in code)
+  /// Applies to meshes read from files and to generated boxes; a latent
+  /// family's mesh ("finger:...") keeps its own numbering, which its
+  /// skinning is defined in. Outputs stay in the file's numbering either way.
+  MeshOrder mesh_order = MeshOrder::File;
   double dt_s = 1.0e-3;        ///< the step the world is integrated with
   Vec3 gravity_m_per_s2 = Vec3(0.0, -9.81, 0.0);
   std::optional<GroundPlane> ground;

@@ -102,9 +102,9 @@ def tick(bar, row, group=None):
         text += f"\n(n={len(group)} seeds)"
     elif len({b["run"].seed for b in row}) > 1:
         text += f"\nseed {r.seed}"
-    overrides = {pairing.floor_setup(b["run"])[3] for b in row}
+    overrides = {pairing.floor_setup(b["run"])[-1] for b in row}  # the last: the scene overrides
     if len(overrides) > 1:
-        text += "\n" + "\n".join(pairing.floor_setup(r)[3])
+        text += "\n" + "\n".join(pairing.floor_setup(r)[-1])
     return text
 
 

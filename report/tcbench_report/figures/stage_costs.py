@@ -35,10 +35,10 @@ def number(value):
 
 
 def bar_key(run):
-    """Runs sharing a bar: the same scene, method label, budget, contact response, scene overrides and length;
-    only the seed may differ."""
-    _, _, response, overrides = pairing.setup(run)
-    return run.scene, run.method_label, run.budget_label, response, overrides, run.record.get("steps")
+    """Runs sharing a bar: the same scene, method label, budget, contact response, mesh order, scene overrides
+    and length; only the seed may differ."""
+    _, _, response, mesh_order, overrides = pairing.setup(run)
+    return run.scene, run.method_label, run.budget_label, response, mesh_order, overrides, run.record.get("steps")
 
 
 def bars(runs):
@@ -56,11 +56,12 @@ def bars(runs):
         varies = [len({key[k] for key in keys}) > 1 for k in range(len(keys[0]))]
         scene_bars = []
         for key, group in groups.items():
-            _, label, budget, response, overrides, steps = key
+            _, label, budget, response, mesh_order, overrides, steps = key
             parts = [wrapped(label), "no budget" if budget == "none" else budget]
             parts += [f"{response} response"] if varies[3] else []
-            parts += list(overrides) if varies[4] else []
-            parts += [f"{steps} steps"] if varies[5] else []
+            parts += [f"mesh_order={mesh_order}"] if varies[4] else []
+            parts += list(overrides) if varies[5] else []
+            parts += [f"{steps} steps"] if varies[6] else []
             if len(group) > 1:
                 parts.append(f"mean of {len(group)} seeds")
             costs = [stage_costs(r) for r in group]

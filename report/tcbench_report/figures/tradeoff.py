@@ -37,14 +37,15 @@ def handling(stat):
 
 def curves(runs):
     """{legend: [runs]}: one curve per method label; per setup too when a scene has several
-    (contact response, scene overrides, RNG seeds), so different experiments are never joined by a line.
-    The legend names only what differs between the setups."""
+    (contact response, mesh order, scene overrides, RNG seeds), so different experiments are never joined by
+    a line. The legend names only what differs between the setups."""
     setups = [pairing.setup(r) for r in runs]
-    varies = [len({s[k] for s in setups}) > 1 for k in range(4)]  # scene, seed, response, overrides
+    varies = [len({s[k] for s in setups}) > 1 for k in range(5)]  # scene, seed, response, mesh order, overrides
     out = {}
-    for r, (_, seed, response, overrides) in zip(runs, setups):
+    for r, (_, seed, response, mesh_order, overrides) in zip(runs, setups):
         # Seeds are repeats of one configuration: points() draws their median, so they share a curve.
-        parts = ([f"{response} response"] if varies[2] else []) + (list(overrides) if varies[3] else [])
+        parts = (([f"{response} response"] if varies[2] else []) + ([f"mesh_order={mesh_order}"] if varies[3] else [])
+                 + (list(overrides) if varies[4] else []))
         key = r.method_label + (" [" + " ".join(parts) + "]" if parts else "")
         out.setdefault(key, []).append(r)
     return dict(sorted(out.items(), key=lambda item: (method_order(item[1][0]), item[0])))

@@ -66,6 +66,8 @@ TEST_CASE("scene file: every key read", "[scene]") {
   CHECK(s.world.dt_s == 0.002);
   CHECK(s.steps == 10);
   CHECK(s.world.gravity_m_per_s2 == Vec3(0, -1, 0));
+  CHECK(s.world.mesh_order == MeshOrder::File);  // the default: the paper's runs
+  CHECK(parse_scene(kScene, "dir/test.toml", {"scene.mesh_order=curve"}).world.mesh_order == MeshOrder::Curve);
   REQUIRE(s.world.ground);
   CHECK(s.world.ground->height_m == -0.5);
   CHECK(s.world.ground->friction == 0.25);
@@ -114,6 +116,8 @@ TEST_CASE("scene file: malformed input names the file, the line and the problem"
       {"NaN dt", "[scene]\ndt = nan\n" + obj, {}, "bad.toml", 2, "must be finite"},
       {"fractional steps", "[scene]\nsteps = 1.5\n" + obj, {}, "bad.toml", 2, "whole number"},
       {"short gravity", "[scene]\ngravity = [0, 1]\n" + obj, {}, "bad.toml", 2, "three numbers"},
+      {"mesh order", "[scene]\nmesh_order = \"zorder\"\n" + obj, {}, "bad.toml", 2,
+       "scene.mesh_order: is 'zorder'; must be \"file\""},
       {"no objects", "[scene]\ndt = 0.1\n", {}, "bad.toml", 0, "no [[object]]"},
       {"object without mesh", "[[object]]\nname = \"a\"\n", {}, "bad.toml", 1, "object 'a' has no mesh"},
       {"duplicate names", obj + "name = \"a\"\n" + obj + "name = \"a\"\n", {}, "bad.toml", 4, "two objects are named 'a'"},

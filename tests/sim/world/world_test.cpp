@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "sim/io/atomic_file.hpp"
+#include "sim/mesh/curve_numbering.hpp"
 #include "sim/world/world_desc.hpp"
 
 using namespace tcb;
@@ -248,4 +249,45 @@ TEST_CASE("degenerate objects: inverted tets reoriented and said, flat tets and 
                     Catch::Matchers::Contains("scale 1e-150"));
   CHECK_NOTHROW(build_world(desc_of("flat.mesh", 1.0, true)));  // a passive obstacle needs no mass
   std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("mesh_order curve renumbers meshes at load, stacked copies share the numbering, a latent family keeps "
+          "its own",
+          "[world][curve]") {
+  const auto desc_of = [](MeshOrder order) {
+    WorldDesc desc;
+    desc.mesh_order = order;
+    ObjectDesc box;
+    box.name = "box";
+    box.mesh = "box:size=0.2x0.1x0.3,cells=4x2x5";
+    box.position_m = Vec3(0.01, 0.02, 0.03);
+    box.stack.count = 2;
+    box.stack.gap_m = 0.01;
+    desc.objects.push_back(box);
+    ObjectDesc finger;
+    finger.name = "finger";
+    finger.mesh = "finger:finger_small";
+    finger.passive = true;
+    finger.position_m = Vec3(0.0, 1.0, 0.0);
+    desc.objects.push_back(finger);
+    return desc;
+  };
+  const World file = build_world(desc_of(MeshOrder::File));
+  const World curve = build_world(desc_of(MeshOrder::Curve));
+  REQUIRE(curve.bodies.size() == 3);
+  const TetMesh& mesh = *curve.bodies[0].mesh;
+  CHECK(curve.bodies[1].mesh == curve.bodies[0].mesh);  // the stack's copies: one mesh, one numbering
+  REQUIRE(mesh.file_vertex_id.size() == mesh.vertex_count());
+  bool moved = false;
+  for (std::int32_t v = 0; v < static_cast<std::int32_t>(mesh.vertex_count()); ++v) moved |= file_vertex(mesh, v) != v;
+  CHECK(moved);  // the generator's lattice order is not the curve's
+  CHECK(file.bodies[0].mesh->file_vertex_id.empty());
+  for (std::size_t b = 0; b < 2; ++b)  // each vertex built where the file's numbering builds it, with its mass
+    for (std::int32_t v = 0; v < static_cast<std::int32_t>(mesh.vertex_count()); ++v) {
+      const auto f = static_cast<std::size_t>(file_vertex(mesh, v));
+      REQUIRE(curve.bodies[b].x_m[static_cast<std::size_t>(v)] == file.bodies[b].x_m[f]);
+      REQUIRE(curve.bodies[b].mass_kg[static_cast<std::size_t>(v)] == Approx(file.bodies[b].mass_kg[f]).epsilon(1e-12));
+    }
+  CHECK(curve.bodies[2].mesh->file_vertex_id.empty());  // its skinning is defined in its own numbering
+  CHECK(curve.bodies[2].x_m == file.bodies[2].x_m);
 }
