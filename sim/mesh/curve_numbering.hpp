@@ -21,9 +21,14 @@
 /// This changes results, which is why it is a scene setting (default off)
 /// and never the paper's method's default: the order of sums over vertices
 /// and surface triangles, and which candidate a smallest-index tie-break
-/// picks, follow the numbering, so a run's figures differ from the file
-/// numbering's in rounding and in tie-breaks (the same scene, not the same
-/// bits). What a run writes stays in the file's numbering (tet_mesh.hpp).
+/// picks, follow the numbering, so without a budget a run's figures differ
+/// from the file numbering's in rounding and in tie-breaks. Under a budget
+/// the difference is larger: a cycle works through points and surface
+/// triangles in numbered order, so which points an interrupted cycle
+/// reaches first follows the numbering, and with them its forces, the
+/// motion, recall and latency (experiments/sweeps/mesh_order.toml measures
+/// both orders side by side).
+/// What a run writes stays in the file's numbering (tet_mesh.hpp).
 
 #include <cstdint>
 #include <vector>
