@@ -64,31 +64,23 @@ enum class Numbering { File = 0, MortonTets = 1, MortonVertices = 2, MortonBoth 
 // The same mesh renumbered: vertices and/or tets sorted by Morton key (a
 // tet by its centroid's), each tet's vertices renamed, the whole rebuilt.
 TetMesh renumbered(const TetMesh& mesh, Numbering numbering) {
-  std::vector<Vec3> x = mesh.positions_m;
-  std::vector<Tet> tets = mesh.tets;
-  if (numbering == Numbering::MortonVertices || numbering == Numbering::MortonBoth) {
-    TetMesh along = vertices_along_curve(mesh);  // what scene mesh_order = "curve" loads
-    x = std::move(along.positions_m);
-    tets = std::move(along.tets);
-  }
-  if (numbering == Numbering::MortonTets || numbering == Numbering::MortonBoth) {
-    std::vector<Tet> sorted;
-    sorted.reserve(tets.size());
-    for (const std::uint32_t t : morton_tet_order(x, tets)) sorted.push_back(tets[t]);  // the detector's slot order
-    tets = std::move(sorted);
-  }
-  return build_tet_mesh(std::move(x), std::move(tets));
+  // Vertices: what a scene's mesh_order = "curve" loads.
+  TetMesh out = numbering == Numbering::MortonVertices || numbering == Numbering::MortonBoth
+                    ? vertices_along_curve(mesh)
+                    : mesh;
+  if (numbering != Numbering::MortonTets && numbering != Numbering::MortonBoth) return out;
+  std::vector<Tet> sorted;
+  sorted.reserve(out.tet_count());
+  for (const std::uint32_t t : morton_tet_order(out.positions_m, out.tets))
+    sorted.push_back(out.tets[t]);  // the detector's slot order
+  return build_tet_mesh(std::move(out.positions_m), std::move(sorted));
 }
 
 Fixture dog_pair(Numbering numbering = Numbering::File) {
   TetMesh dog = read_medit(std::filesystem::path(TCBENCH_SHARED_MESHES) / "dog.mesh");
   if (numbering != Numbering::File) dog = renumbered(dog, numbering);
   for (Vec3& p : dog.positions_m) p *= 0.01;
-  Vec3 lo = dog.positions_m[0], hi = lo;
-  for (const Vec3& p : dog.positions_m) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
+  const auto [lo, hi] = bounding_box(dog.positions_m);
   const auto mesh = std::make_shared<const TetMesh>(std::move(dog));
   Fixture f;
   f.scene.world.dt_s = 1e-3;
@@ -414,8 +406,8 @@ void BM_OrderPaired(benchmark::State& state) {
     state.SkipWithError("plates20 is generated: only the detector's slots (/0) apply");
     return;
   }
-  Fixture f[2] = {plates ? plates20() : dog_pair(),
-                  plates ? plates20() : dog_pair(both_slotted ? Numbering::MortonVertices : static_cast<Numbering>(state.range(0)))};
+  const Numbering second = both_slotted ? Numbering::MortonVertices : static_cast<Numbering>(state.range(0));
+  Fixture f[2] = {plates ? plates20() : dog_pair(), plates ? plates20() : dog_pair(second)};
   const std::vector<char> moving = every_other_body(f[0].world);
   std::vector<CollisionCycle> cycles;
   for (Fixture& g : f) {

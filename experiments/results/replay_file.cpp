@@ -62,8 +62,11 @@ ReplayWriter::ReplayWriter(const std::filesystem::path& dir, const World& world,
   m_manifest["triangles"] = {{"offset", m_bytes}, {"count", triangles.size() / 3}};
   for (const std::uint32_t i : triangles) put(i);
   m_manifest["surface_map"] = {{"offset", m_bytes}, {"count", m_surface.size()}};
-  for (const auto& [body, vertex] : m_surface)  // vertices in the file's numbering, as every output names them
-    put(body), put(static_cast<std::uint32_t>(file_vertex(*world.bodies[body].mesh, static_cast<std::int32_t>(vertex))));
+  for (const auto& [body, vertex] : m_surface) {  // vertices in the file's numbering, as every output names them
+    put(body);
+    put(static_cast<std::uint32_t>(
+        file_vertex_of(world, static_cast<std::int32_t>(body), static_cast<std::int32_t>(vertex))));
+  }
   m_manifest["layouts"] = {
       {"positions", "float32 x 3 per surface vertex (m)"},
       {"contact",

@@ -14,8 +14,9 @@ nlohmann::json configuration_of(const nlohmann::json& run) {
           {"settings", run.value("settings", nlohmann::json::object())},
           {"budget", run.value("budget", nlohmann::json::object()).value("label", "none")},
           {"response", run.value("response", "explicit")},
-          // Renumbered vertices (world.mesh_order "curve") change results in
-          // rounding and tie-breaks: not repeats of the file's numbering.
+          // Renumbered vertices (world.mesh_order "curve") change the order of
+          // sums and, under a budget, of the cycle's work: not repeats of the
+          // file's numbering.
           {"mesh_order", mesh_order_of(run)},
           {"steps", run.value("steps_requested", run.value("steps", std::int64_t{0}))},
           {"overrides", run.value("overrides", nlohmann::json::array())}};

@@ -160,7 +160,8 @@ class Configurations(unittest.TestCase):
         # A run that says "file" is one of a run recorded before the field.
         self.assertEqual(statistics.configuration(a),
                          statistics.configuration(run("b2", mesh_order="file", overrides=self.JITTERED)))
-        for other in (run("m", mesh_order="curve", overrides=self.JITTERED),run("c", budget="full-work/6", overrides=self.JITTERED),
+        for other in (run("m", mesh_order="curve", overrides=self.JITTERED),
+                      run("c", budget="full-work/6", overrides=self.JITTERED),
                       run("d", method="full", budget="none", overrides=self.JITTERED),
                       run("e", response="explicit", overrides=self.JITTERED),
                       run("f", steps=300, overrides=self.JITTERED),

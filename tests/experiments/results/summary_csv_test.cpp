@@ -44,7 +44,8 @@ TEST_CASE("a run is complete only when run.json and steps.csv agree", "[results]
   fs::remove_all(dir);
 }
 
-TEST_CASE("summary.csv says who ran: fixed columns, threads and mesh order among them, then the summary's keys", "[results]") {
+TEST_CASE("summary.csv says who ran: fixed columns, threads and mesh order among them, then the summary's keys",
+          "[results]") {
   const fs::path dir = fs::temp_directory_path() / ("tcbench_summary_csv_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);

@@ -324,7 +324,8 @@ TEST_CASE("full with keep_table is full's run apart from timings and the hashing
     hash_work[1] += std::stoull(cb[hash_column]);
   }
   CHECK(hash_work[1] < hash_work[0] / 2);
-  const auto ra = nlohmann::json::parse(read_file(a / "run.json")), rb = nlohmann::json::parse(read_file(b / "run.json"));
+  const auto ra = nlohmann::json::parse(read_file(a / "run.json"));
+  const auto rb = nlohmann::json::parse(read_file(b / "run.json"));
   CHECK(ra["cycles"]["begun"] == 40);
   CHECK(ra["cycles"]["tet_hashes_fresh"] == 40);  // the paper's schedule: every cycle hashes afresh
   CHECK(rb["cycles"]["begun"] == 40);
@@ -543,7 +544,8 @@ velocity = [0.0, -1.0, 0.0]
   const auto colliding = [](const fs::path& dir) {
     const auto lines = lines_of(dir / "steps.csv");
     const auto names = cells_of(lines.at(0));
-    const auto column = static_cast<std::size_t>(std::find(names.begin(), names.end(), "colliding_points") - names.begin());
+    const auto column =
+        static_cast<std::size_t>(std::find(names.begin(), names.end(), "colliding_points") - names.begin());
     std::vector<std::string> counts;
     for (std::size_t i = 1; i < lines.size(); ++i) counts.push_back(cells_of(lines[i]).at(column));
     return counts;
