@@ -93,10 +93,13 @@ bool segment_crosses_triangle_perturbed(const Vec3& p, const Vec3& q, const Vec3
   if (sp == 0 || sq == 0 || sp == sq) return false;  // degenerate triangle, or both ends on one side
   // The crossing point is inside the triangle iff the segment's line passes
   // each triangle edge on the same side.
+  // Each side is asked only while the answer is open: a side that differs
+  // decides it, and on plates20's stagger (points on the neighbour's face
+  // diagonals) a side can cost the exact way. (The calls are out of line, so
+  // the compiler could not drop the later ones itself.)
   const int s_ab = edge_side(p, q, a, b);
-  const int s_bc = edge_side(p, q, b, c);
-  const int s_ca = edge_side(p, q, c, a);
-  return s_ab != 0 && s_ab == s_bc && s_bc == s_ca;
+  if (s_ab == 0 || edge_side(p, q, b, c) != s_ab) return false;
+  return edge_side(p, q, c, a) == s_ab;
 }
 
 bool triangle_box_apart(const Vec3& edge_lo, const Vec3& edge_hi, const Vec3& a, const Vec3& b, const Vec3& c) {

@@ -319,6 +319,22 @@ int orient3d_unfiltered(const Eigen::Vector3d& a, const Eigen::Vector3d& b, cons
   // This is the common degenerate case in scenes (faces in an axis-aligned
   // plane, points sharing coordinates), and it spares the expansion path.
   if (every_term_has_zero_factor(adx, ady, adz, bdx, bdy, bdz, cdx, cdy, cdz)) return 0;
+  // Exact shortcut for two rows with a zero difference on one axis k (two of
+  // a, b, c share d's k coordinate: a border edge's end and a surface edge in
+  // one axis-aligned face, as where plates20's plates touch). The two rows'
+  // cross product then has only its k component, so with m the third row,
+  // det = r_m . (r_m+1 x r_m+2) (rows cyclic) = r_m[k] (r_m+1 x r_m+2)[k]:
+  // the sign of one difference (a computed difference has the true one's
+  // sign) times cross_product_sign(), exact, in place of the 3x3 stages.
+  const double rows[3][3] = {{adx, ady, adz}, {bdx, bdy, bdz}, {cdx, cdy, cdz}};
+  const Eigen::Vector3d* points[3] = {&a, &b, &c};
+  for (int k = 0; k < 3; ++k) {
+    const bool zero[3] = {rows[0][k] == 0.0, rows[1][k] == 0.0, rows[2][k] == 0.0};
+    if (zero[0] + zero[1] + zero[2] != 2) continue;  // all three: the shortcut above answered
+    const int m = !zero[0] ? 0 : (!zero[1] ? 1 : 2);
+    const int minor = cross_product_sign(d, *points[(m + 1) % 3], d, *points[(m + 2) % 3], k);
+    return rows[m][k] > 0.0 ? -minor : minor;  // orient3d's sign is the opposite of det's
+  }
   int sign = 0;
   if (orient3d_exact_differences(a, b, c, d, sign)) return sign;
   return orient3d_exact(a, b, c, d);

@@ -21,11 +21,14 @@
 /// Requires IEEE-754 round-to-nearest-even doubles without -ffast-math.
 /// Between the filter and the expansions, an exact shortcut returns 0 when
 /// every term of the determinant has an exactly zero coordinate difference
-/// (e.g. four points in one axis-aligned plane); then, when the nine
-/// coordinate differences are exact, an accurate sum of the determinant's
-/// 24 exact parts with a proven error bound decides most of the rest
+/// (e.g. four points in one axis-aligned plane); a second one, when two of
+/// a, b, c share d's coordinate on one axis and the third does not, answers
+/// from the third one's difference on that axis (its sign) times a 2x2
+/// cross_product_sign() (filtered, exact); then, when the nine coordinate
+/// differences are exact, an accurate sum of the determinant's 24 exact
+/// parts with a proven error bound decides most of the rest
 /// (orient3d_exact_differences).
-/// Cost: ~20 flops when the filter decides, a few more when the shortcut
+/// Cost: ~20 flops when the filter decides, a few more when a shortcut
 /// does; a few hundred, with a dozen well-predicted exits, when the
 /// summation stage does; a few hundred with data-dependent branches when the
 /// expansions must (inexact differences with a determinant too small for

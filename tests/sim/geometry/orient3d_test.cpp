@@ -239,6 +239,69 @@ TEST_CASE("orient3d: the zero-difference shortcut agrees with the exact path", "
   CHECK(filter_fails_shortcut_must_not > kCases / 1000);
 }
 
+TEST_CASE("orient3d: the two-zero-rows shortcut agrees with the exact path", "[orient3d]") {
+  // Two of a, b, c share d's coordinate on one axis k, the third does not:
+  // orient3d_unfiltered() answers from one difference's sign and a 2x2
+  // cross_product_sign(). Called without the filter too, so easy cases go
+  // through the shortcut as well. Every axis, every choice of the third row
+  // and both of its signs. Integer points (against the 128-bit reference),
+  // the two rows nudged one unit off parallel half the time so that the
+  // minor cancels below the filter's bound, at scales 2^-60 .. 2^60; and
+  // random doubles spread over 2^-30 .. 2^30 (inexact differences), against
+  // orient3d_exact.
+  std::mt19937_64 rng(2122026);
+  std::uniform_int_distribution<std::int64_t> coord(-(std::int64_t(1) << 30), std::int64_t(1) << 30);
+  std::uniform_int_distribution<std::int64_t> small(-4, 4);
+  std::uniform_int_distribution<int> axis_of(0, 2), nudge(-1, 1), coin(0, 1), exponent(-60, 60), spread(-30, 30);
+  std::uniform_real_distribution<double> u01(-1.0, 1.0);
+  constexpr int kCases = 400000;
+  int zeros = 0, naive_wrong = 0, third_row[3] = {0, 0, 0};
+  for (int i = 0; i < kCases; ++i) {
+    const int k = axis_of(rng), m = axis_of(rng);
+    const int i1 = (m + 1) % 3, i2 = (m + 2) % 3;
+    V points[4];  // a, b, c, d
+    int expected = 2;
+    if (i % 2 == 0) {
+      // Rows from d: the two near 2^50 (so a nudged minor cancels to 2^-50
+      // of its products, below the filter's bound), the third near 2^20:
+      // the reference's products stay below 2^127, the points below 2^53.
+      std::array<std::int64_t, 12> p{};
+      const std::int64_t s = small(rng);
+      const bool near_parallel = coin(rng);
+      for (int x = 0; x < 3; ++x) {
+        p[9 + x] = coord(rng);
+        p[3 * m + x] = p[9 + x] + (coord(rng) >> 10);
+        const std::int64_t v = coord(rng) * (std::int64_t(1) << 20);
+        p[3 * i1 + x] = p[9 + x] + v;
+        p[3 * i2 + x] = p[9 + x] + (near_parallel ? s * v + nudge(rng) : coord(rng) * (std::int64_t(1) << 20));
+      }
+      p[3 * i1 + k] = p[3 * i2 + k] = p[9 + k];
+      if (p[3 * m + k] == p[9 + k]) ++p[3 * m + k];
+      expected = reference_sign_from_d(p);
+      const double f = std::ldexp(1.0, exponent(rng));
+      for (int r = 0; r < 4; ++r) points[r] = V(p[3 * r] * f, p[3 * r + 1] * f, p[3 * r + 2] * f);
+    } else {
+      for (V& q : points)
+        for (int x = 0; x < 3; ++x) q[x] = std::ldexp(u01(rng), spread(rng));
+      points[i1][k] = points[i2][k] = points[3][k];
+      if (points[m][k] == points[3][k]) points[m][k] += 1.0;
+    }
+    const V &a = points[0], &b = points[1], &c = points[2], &d = points[3];
+    const int exact = orient3d_exact(a, b, c, d);
+    if (expected != 2) REQUIRE(exact == expected);
+    REQUIRE(orient3d_unfiltered(a, b, c, d) == exact);
+    REQUIRE(orient3d(a, b, c, d) == exact);
+    zeros += exact == 0;
+    naive_wrong += naive_sign(a, b, c, d) != exact;
+    ++third_row[m];
+  }
+  // Hard cases indeed (plain floating point errs, and exact zeros occur),
+  // and every row took the third row's part.
+  CHECK(naive_wrong > kCases / 100);
+  CHECK(zeros > kCases / 1000);
+  for (const int n : third_row) CHECK(n > kCases / 4);
+}
+
 TEST_CASE("orient3d: the summation stage decides only exact differences, and then exactly, on a million cases",
           "[orient3d]") {
   // The stage between the shortcut and the expansions, called alone on a
