@@ -18,10 +18,11 @@ SurfaceHash::SurfaceHash(const World& world, double cell_size_m, HashFunction ha
     m_owner.insert(m_owner.end(), n, static_cast<std::int32_t>(b));
   }
   m_hash = SpatialHash(cell_size_m, next_prime(2 * std::size_t(total) + 1), hash);
+  m_boxes.resize(total);
 }
 
 std::size_t SurfaceHash::memory_bytes() const {
-  return m_hash.memory_bytes() + heap_bytes(m_offset) + heap_bytes(m_owner);
+  return m_hash.memory_bytes() + heap_bytes(m_offset) + heap_bytes(m_owner) + heap_bytes(m_boxes);
 }
 
 void SurfaceHash::triangle_box(const World& world, std::int32_t body, std::int32_t triangle, Vec3& lo,
@@ -33,9 +34,11 @@ void SurfaceHash::triangle_box(const World& world, std::int32_t body, std::int32
 }
 
 std::uint64_t SurfaceHash::hash_triangle(const World& world, std::int32_t body, std::int32_t triangle) {
-  Vec3 lo, hi;
-  triangle_box(world, body, triangle, lo, hi);
-  return work::kCellInsert * m_hash.insert_box(lo, hi, m_offset[body] + static_cast<std::uint32_t>(triangle));
+  const std::uint32_t id = m_offset[body] + static_cast<std::uint32_t>(triangle);
+  Box& box = m_boxes[id];
+  triangle_box(world, body, triangle, box.lo, box.hi);
+  note_hash_step(world.step_index);
+  return work::kCellInsert * m_hash.insert_box(box.lo, box.hi, id);
 }
 
 double SurfaceHash::triangle_work(const World& world, std::int32_t body, std::int32_t triangle) const {
@@ -69,11 +72,13 @@ void SurfaceHash::hash_all(const World& world, const std::vector<std::int32_t>& 
     const auto triangle = static_cast<std::int32_t>(i - first[k]);
     triangle_box(world, body, triangle, lo, hi);
     item = m_offset[static_cast<std::size_t>(body)] + static_cast<std::uint32_t>(triangle);
+    m_boxes[item] = Box{lo, hi};
     // An absurd box throws in the insertion that follows; its work is never read.
     const double cells = std::min(m_hash.cells_of_box(lo, hi), 0x1p53);
     work[i] = work::kCellInsert * static_cast<std::uint64_t>(cells);
     return true;
   };
+  if (first.back() > 0) note_hash_step(world.step_index);
   m_hash.insert_all_and_build(first.back(), box_of, pool);
 }
 
@@ -108,13 +113,25 @@ std::uint64_t border_edge_crossing(const World& world, const Contact& c, std::in
   Vec3 best_normal = Vec3::Zero();
   const Vec3 grow = Vec3::Constant(margin_m);
   const Vec3 edge_lo = p.cwiseMin(q), edge_hi = p.cwiseMax(q);
+  // The boxes the table was hashed with are the boxes at these positions
+  // when every triangle was hashed this step (a cycle within one step).
+  const bool hashed_boxes = surface.boxes_at(world.step_index);
   surface.for_each_candidate(c.other, edge_lo - grow, edge_hi + grow, scratch, [&](std::int32_t tri) {
     work += work::kCandidate;
+    // Most candidates of a bucket lie apart from the edge: rejected without
+    // an orient3d, and charged as before. On the hashed box when it is this
+    // step's (the same min and max of the same corners, so the same
+    // decision as triangle_box_apart(), NaN included), without reading the
+    // triangle or its corners.
+    if (hashed_boxes) {
+      const SurfaceHash::Box& box = surface.hashed_box(c.other, tri);
+      if ((box.hi.array() < edge_lo.array()).any() || (box.lo.array() > edge_hi.array()).any()) return;
+    }
     const Triangle& f = B.mesh->surface[tri];
     const Vec3 &a = B.x_m[f[0]], &b = B.x_m[f[1]], &cc = B.x_m[f[2]];
-    // Most candidates of a bucket lie apart from the edge: rejected without
-    // an orient3d, and charged as before.
-    if (triangle_box_apart(edge_lo, edge_hi, a, b, cc) || !segment_crosses_triangle_perturbed(p, q, a, b, cc)) return;
+    if ((!hashed_boxes && triangle_box_apart(edge_lo, edge_hi, a, b, cc)) ||
+        !segment_crosses_triangle_perturbed(p, q, a, b, cc))
+      return;
     const double t = segment_plane_parameter(p, q, a, b, cc);
     if (t > best_t) {
       best_t = t;

@@ -23,6 +23,8 @@
 /// counted by the caller (StepReport::depth_fallback).
 /// Units: metres; depth positive inside B.
 
+#include <limits>
+
 #include "method/detection/spatial_hash.hpp"
 #include "method/handler/contact.hpp"
 #include "sim/world/world.hpp"
@@ -35,7 +37,10 @@ using ContactLookup = std::vector<std::vector<std::int32_t>>;
 class SurfaceHash {
  public:
   SurfaceHash(const World& world, double cell_size_m, HashFunction hash);
-  void begin_epoch() { m_hash.begin_epoch(); }
+  void begin_epoch() {
+    m_hash.begin_epoch();
+    m_boxes_step = kNoStep;
+  }
   /// Hashes one surface triangle at the current positions; returns work units.
   std::uint64_t hash_triangle(const World& world, std::int32_t body, std::int32_t triangle);
   /// The work hash_triangle() would return for the triangle now, hashing
@@ -70,6 +75,22 @@ class SurfaceHash {
   /// Heap bytes of the table and its triangle index (not the scratches).
   std::size_t memory_bytes() const;
 
+  /// A triangle's box as hashed: the min and max of its corners (in corner
+  /// order, as triangle_box_apart() takes them) at the positions of the
+  /// step that hashed it.
+  struct Box {
+    Vec3 lo, hi;
+  };
+  /// Whether every triangle of this epoch was hashed at the positions of
+  /// world step `step_index` (so hashed_box() is the box at that step's
+  /// positions); false once triangles of two steps are in (fine tasks
+  /// spanning steps), and before the first.
+  bool boxes_at(std::int64_t step_index) const { return m_boxes_step == step_index; }
+  /// The box a triangle of `body` was hashed with (one hashed this epoch).
+  const Box& hashed_box(std::int32_t body, std::int32_t triangle) const {
+    return m_boxes[m_offset[static_cast<std::size_t>(body)] + static_cast<std::uint32_t>(triangle)];
+  }
+
   /// Calls f(triangle) for each distinct triangle of `body` hashed in the cells of [lo, hi].
   template <typename F>
   void for_each_candidate(std::int32_t body, const Vec3& lo, const Vec3& hi, QueryScratch& scratch, F&& f) const {
@@ -83,6 +104,15 @@ class SurfaceHash {
 
  private:
   void triangle_box(const World& world, std::int32_t body, std::int32_t triangle, Vec3& lo, Vec3& hi) const;
+  /// Records that a triangle was hashed at world step `step_index`.
+  void note_hash_step(std::int64_t step_index) {
+    if (m_boxes_step == kNoStep)
+      m_boxes_step = step_index;
+    else if (m_boxes_step != step_index)
+      m_boxes_step = kMixedSteps;
+  }
+  static constexpr std::int64_t kNoStep = std::numeric_limits<std::int64_t>::min();
+  static constexpr std::int64_t kMixedSteps = kNoStep + 1;
   /// first[k]: the walk index of bodies[k]'s first triangle; first.back() the walk's length.
   static std::vector<std::size_t> walk_starts(const World& world, const std::vector<std::int32_t>& bodies);
   /// The k with first[k] <= i < first[k + 1].
@@ -90,6 +120,11 @@ class SurfaceHash {
   SpatialHash m_hash;
   std::vector<std::uint32_t> m_offset;
   std::vector<std::int32_t> m_owner;
+  /// Each triangle's box as hashed, by id (its body's offset + index): the
+  /// border-edge search rejects most candidates on it, one read in place of
+  /// the triangle's corners (4 scattered reads), when boxes_at() the step.
+  std::vector<Box> m_boxes;
+  std::int64_t m_boxes_step = kNoStep;
 };
 
 /// border_point_depth() in pieces, one border edge a piece, for schedules
@@ -117,6 +152,10 @@ void finish_border_depth(Contact& contact, const BorderSum& sum);
 /// `margin_m` > 0: the surface triangles may have moved up to that far since
 /// they were hashed; each edge's candidate box is grown by it (the exact
 /// crossing test uses the current positions). 0: the paper's search.
+/// Candidates whose box lies apart from the edge's are rejected (and
+/// charged) before any orient3d: on the box the table hashed when every
+/// triangle was hashed in this world step (SurfaceHash::boxes_at), else on
+/// the corners' current positions; the same min and max, so the same answer.
 /// It writes only `contact` and reads of the other contacts only their
 /// `other` (through the lookup), so with the contact list unchanged it may run
 /// for several contacts concurrently, each thread with its own scratch.

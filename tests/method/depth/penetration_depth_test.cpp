@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "baselines/registry.hpp"
+#include "method/depth/penetration_depth.hpp"
 #include "tests/method/test_worlds.hpp"
 
 using namespace tcb;
@@ -108,4 +109,90 @@ TEST_CASE("depth: a block wholly inside another has no border path: fallback, no
   CHECK(inner == 27);
   CHECK(o.report.depth_fallback == 27);
   for (const Vec3& f : o.world.bodies[1].contact_force_n) CHECK(f == Vec3::Zero());
+}
+
+TEST_CASE("depth: the border search rejects on hashed boxes only in the step they were hashed", "[depth]") {
+  // The surface table keeps each triangle's box as hashed, and the border
+  // search rejects candidates on it while the world is still at the step that
+  // hashed them; a step later it takes the corners' current positions, as a
+  // task always does. Here B's surface is hashed 4 cm above where B is, and
+  // the search (margin 6 cm, so the old entries are still candidates) runs a
+  // step later, at B's real place: the crossings of A's border edges with B's
+  // top face at y = 0.1 must be found, each point's depth 0.1 - y. Told the
+  // boxes are current (the same step), the same search rejects those
+  // triangles on boxes 4 cm off and misses crossings: the step check is what
+  // the first answer rests on.
+  const test::TestScene scene =
+      test::scene_of({{"big", "box:size=1x0.2x1,cells=8x2x8", Vec3::Zero(), true},
+                      {"small", "box:size=0.2x0.2x0.2,cells=4x4x4", Vec3(0.013, 0.2 - 0.03, 0.027)}});
+  const Outcome o = one_cycle(scene);
+  World world = build_world(scene.world);
+  const CollisionSettings settings = test::settings_of(world, scene);
+  std::vector<Contact> contacts;
+  for (const Contact& c : o.contacts)
+    if (c.object == 1) contacts.push_back(c);
+  REQUIRE(!contacts.empty());
+  ContactLookup lookup(world.bodies.size());
+  for (std::size_t b = 0; b < world.bodies.size(); ++b) lookup[b].assign(world.bodies[b].x_m.size(), -1);
+  for (std::size_t i = 0; i < contacts.size(); ++i)
+    lookup[static_cast<std::size_t>(contacts[i].object)][static_cast<std::size_t>(contacts[i].vertex)] =
+        static_cast<std::int32_t>(i);
+
+  SurfaceHash surface(world, settings.detection.cell_size_m, settings.detection.hash);
+  const auto hash_big_at = [&](double lift_m) {
+    for (Vec3& p : world.bodies[0].x_m) p.y() += lift_m;
+    surface.begin_epoch();
+    for (std::size_t t = 0; t < world.bodies[0].mesh->surface.size(); ++t)
+      surface.hash_triangle(world, 0, static_cast<std::int32_t>(t));
+    surface.build();
+    for (Vec3& p : world.bodies[0].x_m) p.y() -= lift_m;
+  };
+  const auto depths = [&](std::vector<Contact>& out) {
+    out = contacts;
+    SurfaceHash::QueryScratch scratch = surface.make_scratch();
+    for (Contact& c : out) {
+      c.depth_source = DepthSource::None;
+      border_point_depth(world, c, contacts, lookup, surface, scratch, 0.06);
+    }
+  };
+  std::vector<Contact> out;
+
+  // Hashed where B is, searched in the same step: the boxes are read.
+  hash_big_at(0.0);
+  REQUIRE(surface.boxes_at(world.step_index));
+  REQUIRE_FALSE(surface.boxes_at(world.step_index + 1));
+  depths(out);
+  std::vector<Contact> same_step = out;
+  // The same search a step later (nothing moved) takes the corners: the same
+  // contacts bit for bit.
+  ++world.step_index;
+  depths(out);
+  int border = 0;
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    REQUIRE(out[i].depth_source == same_step[i].depth_source);
+    REQUIRE(out[i].depth_m == same_step[i].depth_m);
+    REQUIRE(out[i].direction == same_step[i].direction);
+    border += out[i].depth_source == DepthSource::Border;
+  }
+  REQUIRE(border > 0);
+
+  // Hashed 4 cm up, searched a step later at B's place.
+  hash_big_at(0.04);
+  ++world.step_index;
+  REQUIRE_FALSE(surface.boxes_at(world.step_index));
+  depths(out);
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    REQUIRE(out[i].depth_source == same_step[i].depth_source);
+    if (out[i].depth_source != DepthSource::Border) continue;
+    const double truth = 0.1 - world.bodies[1].x_m[static_cast<std::size_t>(out[i].vertex)].y();
+    REQUIRE(out[i].depth_m == Approx(truth).margin(1e-12));
+  }
+  // Told the stale boxes are current, the search misses crossings.
+  --world.step_index;
+  REQUIRE(surface.boxes_at(world.step_index));
+  depths(out);
+  int missed = 0;
+  for (std::size_t i = 0; i < out.size(); ++i)
+    missed += same_step[i].depth_source == DepthSource::Border && out[i].depth_source != DepthSource::Border;
+  CHECK(missed > 0);
 }
