@@ -362,7 +362,8 @@ struct SideBySide {
 };
 
 // The 2-thread speed-up measured side by side: BM_ThreadsPaired/<scene>/<keep>
-// (scene 0 the dog pair, 1 plates20; keep as in the moving benchmarks, with
+// (scene 0 the dog pair, 1 plates20, 2 plates20 settled as in
+// BM_Plates20Settled; keep as in the moving benchmarks, with
 // the same motion when > 0) runs two cycles on one world, one on 1 thread and
 // one on 2, both in every iteration (which goes first alternates), so the
 // host's load, which moves this VM's single figures 1.3-2x between minutes,
@@ -374,7 +375,7 @@ struct SideBySide {
 void BM_ThreadsPaired(benchmark::State& state) {
   const bool dogs = state.range(0) == 0;
   if (dogs && !have_dog_mesh(state)) return;
-  Fixture f = dogs ? dog_pair() : plates20();
+  Fixture f = dogs ? dog_pair() : (state.range(0) == 2 ? plates20_settled(300) : plates20());
   const std::vector<char> moving = every_other_body(f.world);
   const bool move = state.range(1) > 0;
   CollisionSettings one = resolve_collision_settings(f.world, f.scene.collision, f.scene.world.dt_s);
@@ -406,7 +407,7 @@ void BM_ThreadsPaired(benchmark::State& state) {
     state.counters["ms2_" + name] = pair.stages[1].ms[st] / calls;
   }
 }
-BENCHMARK(BM_ThreadsPaired)->Args({0, 0})->Args({1, 0})->Args({0, 125})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ThreadsPaired)->Args({0, 0})->Args({1, 0})->Args({2, 0})->Args({0, 125})->Unit(benchmark::kMillisecond);
 
 // What ordering along a space-filling curve buys, measured side by side:
 // BM_OrderPaired/<numbering>/<keep>/<scene> runs the dog pair (scene 0; 1:
