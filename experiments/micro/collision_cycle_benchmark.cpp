@@ -11,9 +11,9 @@
 // table is a dense grid, one cell a bucket (TetHashDetector::enable_widening).
 // cells_per_tet: cells a tet's box covers, so hash entries a tet a cycle (fewer
 // are entered where a budgetless cycle leaves out tets no query point reaches).
-// BM_Plates20/<hash>/<threads>: the plates20 scene (15,360 tets, at the origin).
+// BM_Plates20/<hash>/<threads>: the plates20 scene (15,360 tets, as built: step 0).
 // BM_Plates20Settled/<threads>: the same after 300 steps of `full` (the
-// stack settled into itself, as a running scene meets it).
+// stack sunk into itself, as a running scene meets it).
 // BM_DogPairMoving/<keep>/<threads>, BM_Plates20Moving/<keep>: the same
 // scenes moving between cycles as a step would move them (dog_b, and every
 // other plate, translated along x by 1 mm a cycle, back and forth every 32
@@ -111,8 +111,9 @@ Fixture plates20() {
 }
 
 // plates20 after `steps` steps of the scene under `full` (untimed): the
-// stack has settled about a millimetre into the plates below, and touching
-// faces are no longer the same doubles. At the origin every interface point
+// plates have sunk into one another under the stack's weight (not yet at
+// rest, which the scene reaches in its second second), and touching faces
+// are no longer the same doubles. As built (step 0) every interface point
 // lies exactly on its neighbour's face, where orient3d's exact stages answer
 // often; a running scene meets that in its first step only, so BM_Plates20
 // alone would misstate where a running stack's cycle goes.
@@ -362,14 +363,15 @@ struct SideBySide {
 };
 
 // The 2-thread speed-up measured side by side: BM_ThreadsPaired/<scene>/<keep>
-// (scene 0 the dog pair, 1 plates20, 2 plates20 settled as in
-// BM_Plates20Settled; keep as in the moving benchmarks, with
-// the same motion when > 0) runs two cycles on one world, one on 1 thread and
-// one on 2, both in every iteration (which goes first alternates), so the
-// host's load, which moves this VM's single figures 1.3-2x between minutes,
-// weighs on both alike. speedup_2t: the one-thread cycles' time over the
-// two-thread cycles' (sums over the iterations), and speedup_<stage> the
-// same for each stage (the cycle's stage clock); ms_1t, ms_2t per cycle.
+// (scene 0 the dog pair, 1 plates20, 2 plates20 after 300 steps as in
+// BM_Plates20Settled, rebuilt untimed at each call; keep as in the moving
+// benchmarks, with the same motion when > 0) runs two cycles on one world,
+// one on 1 thread and one on 2, both in every iteration (which goes first
+// alternates), so the host's load, which moves this VM's single figures
+// 1.3-2x between minutes, weighs on both alike. speedup_2t: the one-thread
+// cycles' time over the two-thread cycles' (sums over the iterations), and
+// speedup_<stage> the same for each stage (the cycle's stage clock); ms_1t,
+// ms_2t per cycle.
 // micro_machine_scaling gives the machine's own ratio for kinds of work
 // beside it. Stops with an error if the two cycles' contacts differ.
 void BM_ThreadsPaired(benchmark::State& state) {

@@ -72,7 +72,8 @@ class SurfaceHash {
     std::uint64_t query = 0;
   };
   QueryScratch make_scratch() const { return QueryScratch{std::vector<std::uint64_t>(m_owner.size(), 0), 0}; }
-  /// Heap bytes of the table and its triangle index (not the scratches).
+  /// Heap bytes of the table, its triangle index and the hashed boxes (48
+  /// bytes a triangle; not the scratches).
   std::size_t memory_bytes() const;
 
   /// A triangle's box as hashed: the min and max of its corners (in corner
@@ -156,6 +157,8 @@ void finish_border_depth(Contact& contact, const BorderSum& sum);
 /// charged) before any orient3d: on the box the table hashed when every
 /// triangle was hashed in this world step (SurfaceHash::boxes_at), else on
 /// the corners' current positions; the same min and max, so the same answer.
+/// This rests on what the whole cycle assumes (detected_step, batches):
+/// positions change only in World::step, which advances step_index.
 /// It writes only `contact` and reads of the other contacts only their
 /// `other` (through the lookup), so with the contact list unchanged it may run
 /// for several contacts concurrently, each thread with its own scratch.

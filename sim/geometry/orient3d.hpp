@@ -29,10 +29,12 @@
 /// parts with a proven error bound decides most of the rest
 /// (orient3d_exact_differences).
 /// Cost: ~20 flops when the filter decides, a few more when a shortcut
-/// does; a few hundred, with a dozen well-predicted exits, when the
-/// summation stage does; a few hundred with data-dependent branches when the
-/// expansions must (inexact differences with a determinant too small for
-/// the filter, or a sign the stage leaves open).
+/// does (the second one's 2x2 has its own filter, and its own expansions
+/// for a minor that nearly cancels); a few hundred, with a dozen
+/// well-predicted exits, when the summation stage does; a few hundred with
+/// data-dependent branches when the expansions must (inexact differences
+/// with a determinant too small for the filter, or a sign the stage leaves
+/// open).
 
 #include <cmath>
 
@@ -78,8 +80,10 @@ inline int orient3d_filter(const Eigen::Vector3d& ad, const Eigen::Vector3d& bd,
 int orient3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
              const Eigen::Vector3d& d);
 
-/// orient3d() past its filter (the shortcut, the summation stage, the
-/// expansions): the same exact sign for any input, meant for a caller that
+/// orient3d() past its filter (the shortcuts, the summation stage, the
+/// expansions): the same exact sign for any input within the contract above
+/// (NaN, infinite or out-of-range coordinates get no promise: a shortcut and
+/// the expansions may then answer differently), meant for a caller that
 /// ran orient3d_filter() itself and got 0, so the filter is not evaluated
 /// twice.
 int orient3d_unfiltered(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,

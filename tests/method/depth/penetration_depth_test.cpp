@@ -140,19 +140,22 @@ TEST_CASE("depth: the border search rejects on hashed boxes only in the step the
 
   SurfaceHash surface(world, settings.detection.cell_size_m, settings.detection.hash);
   const auto hash_big_at = [&](double lift_m) {
+    const std::vector<Vec3> place = world.bodies[0].x_m;
     for (Vec3& p : world.bodies[0].x_m) p.y() += lift_m;
     surface.begin_epoch();
     for (std::size_t t = 0; t < world.bodies[0].mesh->surface.size(); ++t)
       surface.hash_triangle(world, 0, static_cast<std::int32_t>(t));
     surface.build();
-    for (Vec3& p : world.bodies[0].x_m) p.y() -= lift_m;
+    world.bodies[0].x_m = place;
   };
+  std::vector<std::uint64_t> work;
   const auto depths = [&](std::vector<Contact>& out) {
     out = contacts;
+    work.clear();
     SurfaceHash::QueryScratch scratch = surface.make_scratch();
     for (Contact& c : out) {
       c.depth_source = DepthSource::None;
-      border_point_depth(world, c, contacts, lookup, surface, scratch, 0.06);
+      work.push_back(border_point_depth(world, c, contacts, lookup, surface, scratch, 0.06));
     }
   };
   std::vector<Contact> out;
@@ -162,11 +165,13 @@ TEST_CASE("depth: the border search rejects on hashed boxes only in the step the
   REQUIRE(surface.boxes_at(world.step_index));
   REQUIRE_FALSE(surface.boxes_at(world.step_index + 1));
   depths(out);
-  std::vector<Contact> same_step = out;
+  const std::vector<Contact> same_step = out;
+  const std::vector<std::uint64_t> same_step_work = work;
   // The same search a step later (nothing moved) takes the corners: the same
-  // contacts bit for bit.
+  // contacts bit for bit, and the same work.
   ++world.step_index;
   depths(out);
+  REQUIRE(work == same_step_work);
   int border = 0;
   for (std::size_t i = 0; i < out.size(); ++i) {
     REQUIRE(out[i].depth_source == same_step[i].depth_source);

@@ -244,18 +244,21 @@ TEST_CASE("orient3d: the two-zero-rows shortcut agrees with the exact path", "[o
   // orient3d_unfiltered() answers from one difference's sign and a 2x2
   // cross_product_sign(). Called without the filter too, so easy cases go
   // through the shortcut as well. Every axis, every choice of the third row
-  // and both of its signs. Integer points (against the 128-bit reference),
-  // the two rows nudged one unit off parallel half the time so that the
-  // minor cancels below the filter's bound, at scales 2^-60 .. 2^60; and
-  // random doubles spread over 2^-30 .. 2^30 (inexact differences), against
-  // orient3d_exact.
+  // and both of its signs (counted below). Integer points (against the
+  // 128-bit reference), the two rows nudged one unit off parallel half the
+  // time so that the 2x2 minor cancels to about 2^-50 of its products, near
+  // its filter's bound (plain floating point then gets the minor's sign
+  // wrong in some cases, counted: those reach the 2x2's exact stage), at
+  // scales 2^-60 .. 2^60; and random doubles spread over 2^-30 .. 2^30
+  // (inexact differences), against orient3d_exact.
   std::mt19937_64 rng(2122026);
   std::uniform_int_distribution<std::int64_t> coord(-(std::int64_t(1) << 30), std::int64_t(1) << 30);
   std::uniform_int_distribution<std::int64_t> small(-4, 4);
   std::uniform_int_distribution<int> axis_of(0, 2), nudge(-1, 1), coin(0, 1), exponent(-60, 60), spread(-30, 30);
   std::uniform_real_distribution<double> u01(-1.0, 1.0);
   constexpr int kCases = 400000;
-  int zeros = 0, naive_wrong = 0, third_row[3] = {0, 0, 0};
+  int zeros = 0, naive_wrong = 0, minor_naive_wrong = 0, third_row[3] = {0, 0, 0}, axis[3] = {0, 0, 0};
+  int third_positive = 0, third_negative = 0;
   for (int i = 0; i < kCases; ++i) {
     const int k = axis_of(rng), m = axis_of(rng);
     const int i1 = (m + 1) % 3, i2 = (m + 2) % 3;
@@ -294,12 +297,24 @@ TEST_CASE("orient3d: the two-zero-rows shortcut agrees with the exact path", "[o
     zeros += exact == 0;
     naive_wrong += naive_sign(a, b, c, d) != exact;
     ++third_row[m];
+    ++axis[k];
+    (points[m][k] > d[k] ? third_positive : third_negative) += 1;
+    // The 2x2 minor in plain floating point against its exact sign.
+    const V u = points[i1] - d, w = points[i2] - d;
+    const int j1 = (k + 1) % 3, j2 = (k + 2) % 3;
+    const double minor = u[j1] * w[j2] - u[j2] * w[j1];
+    minor_naive_wrong +=
+        (minor > 0.0 ? 1 : (minor < 0.0 ? -1 : 0)) != cross_product_sign_exact(d, points[i1], d, points[i2], k);
   }
   // Hard cases indeed (plain floating point errs, and exact zeros occur),
   // and every row took the third row's part.
   CHECK(naive_wrong > kCases / 100);
   CHECK(zeros > kCases / 1000);
+  CHECK(minor_naive_wrong > kCases / 1000);
   for (const int n : third_row) CHECK(n > kCases / 4);
+  for (const int n : axis) CHECK(n > kCases / 4);
+  CHECK(third_positive > kCases / 4);
+  CHECK(third_negative > kCases / 4);
 }
 
 TEST_CASE("orient3d: the summation stage decides only exact differences, and then exactly, on a million cases",
