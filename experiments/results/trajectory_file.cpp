@@ -49,8 +49,9 @@ TrajectoryWriter::TrajectoryWriter(const std::filesystem::path& path, const Worl
     put(out, static_cast<std::uint32_t>(b.x_m.size()));
     std::vector<double> masses = b.mass_kg, scratch;
     masses.resize(b.x_m.size(), 0.0);  // passive bodies may carry none
-    masses = in_file_order(*b.mesh, masses, scratch);
-    out.write(reinterpret_cast<const char*>(masses.data()), static_cast<std::streamsize>(masses.size() * sizeof(double)));
+    const std::vector<double>& in_file = in_file_order(*b.mesh, masses, scratch);
+    out.write(reinterpret_cast<const char*>(in_file.data()),
+              static_cast<std::streamsize>(in_file.size() * sizeof(double)));
   }
 }
 

@@ -44,7 +44,7 @@ Json world_json(const SceneDesc& scene, const World& world) {
   return Json{{"name", scene.name},
               {"file", scene.path.string()},
               {"ground", scene.world.ground.has_value()},
-              {"mesh_order", scene.world.mesh_order == MeshOrder::Curve ? "curve" : "file"},
+              {"mesh_order", to_string(scene.world.mesh_order)},
               {"objects", objects}};
 }
 

@@ -125,7 +125,7 @@ std::uint64_t border_edge_crossing(const World& world, const Contact& c, std::in
     // triangle or its corners.
     if (hashed_boxes) {
       const SurfaceHash::Box& box = surface.hashed_box(c.other, tri);
-      if ((box.hi.array() < edge_lo.array()).any() || (box.lo.array() > edge_hi.array()).any()) return;
+      if (boxes_apart(edge_lo, edge_hi, box.lo, box.hi)) return;
     }
     const Triangle& f = B.mesh->surface[tri];
     const Vec3 &a = B.x_m[f[0]], &b = B.x_m[f[1]], &cc = B.x_m[f[2]];

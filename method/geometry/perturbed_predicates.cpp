@@ -103,8 +103,7 @@ bool segment_crosses_triangle_perturbed(const Vec3& p, const Vec3& q, const Vec3
 }
 
 bool triangle_box_apart(const Vec3& edge_lo, const Vec3& edge_hi, const Vec3& a, const Vec3& b, const Vec3& c) {
-  return (a.cwiseMax(b).cwiseMax(c).array() < edge_lo.array()).any() ||
-         (a.cwiseMin(b).cwiseMin(c).array() > edge_hi.array()).any();
+  return boxes_apart(edge_lo, edge_hi, a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c));
 }
 
 double segment_plane_parameter(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c) {

@@ -51,6 +51,14 @@ bool point_in_tet_perturbed(const Vec3& p, const Vec3& v0, const Vec3& v1, const
 /// at an end point, the answer is a clean yes or no.
 bool segment_crosses_triangle_perturbed(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c);
 
+/// Whether box [lo, hi] lies strictly apart from the box [edge_lo, edge_hi]
+/// along some axis: exact comparisons, boxes that touch are not apart, and a
+/// NaN coordinate decides nothing on its axis. triangle_box_apart() on the
+/// triangle's box; inline for the border search, which keeps hashed boxes.
+inline bool boxes_apart(const Vec3& edge_lo, const Vec3& edge_hi, const Vec3& lo, const Vec3& hi) {
+  return (hi.array() < edge_lo.array()).any() || (lo.array() > edge_hi.array()).any();
+}
+
 /// Whether the box of triangle (a, b, c) lies strictly apart from the box
 /// [edge_lo, edge_hi] of a segment (its end points' componentwise min and
 /// max) along some axis. Then segment_crosses_triangle_perturbed() is false

@@ -25,6 +25,14 @@ def response_override(override):
     return value.strip().strip("'\"") if key.strip() == RESPONSE_KEY else None
 
 
+MESH_ORDER_KEY = "scene.mesh_order"  # the scene key renumbering vertices; run.json records its effect
+
+
+def mesh_order_override(override):
+    """True for a `scene.mesh_order=...` override: the run's recorded world.mesh_order already says it."""
+    return override.partition("=")[0].strip() == MESH_ORDER_KEY
+
+
 def response_order(mode):
     return (RESPONSE_ORDER.index(mode) if mode in RESPONSE_ORDER else len(RESPONSE_ORDER), mode)
 

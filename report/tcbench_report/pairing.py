@@ -4,7 +4,7 @@ Written once here because the speed-up figure, the claims and the jitter
 comparison all need it and must agree on it. The speed-up is the handling
 time's (what the paper claims) or the whole step's (handling + dynamics).
 """
-from .loader import response_override
+from .loader import mesh_order_override, response_override
 
 REFERENCE_METHOD = "full"  # the registry's exhaustive baseline
 
@@ -27,9 +27,10 @@ def setup(run):
     mode (implicit or explicit penalty contact) is the run's recorded one
     (explicit for runs older than the field); the `collision.response=...`
     override that chose it is folded into it, so a run that sets it explicitly
-    and an older run that was explicit without saying so are one experiment.
+    and an older run that was explicit without saying so are one experiment. The same for the mesh order: a
+    `scene.mesh_order=...` override is folded into the recorded one (legends would otherwise name it twice).
     """
-    overrides = tuple(sorted(o for o in run.overrides if response_override(o) is None))
+    overrides = tuple(sorted(o for o in run.overrides if response_override(o) is None and not mesh_order_override(o)))
     return run.scene, run.seed, run.response, run.mesh_order, overrides
 
 

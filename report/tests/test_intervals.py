@@ -170,6 +170,14 @@ class Configurations(unittest.TestCase):
                       run("i")):
             self.assertNotEqual(statistics.configuration(a), statistics.configuration(other), other.name)
 
+    def test_pairing_folds_the_mesh_order_override_into_the_recorded_order(self):
+        curve = run("c1", mesh_order="curve")
+        self.assertEqual(pairing.setup(curve),
+                         pairing.setup(run("c2", mesh_order="curve", overrides=["scene.mesh_order=curve"])))
+        self.assertEqual(pairing.setup(run("f1")),
+                         pairing.setup(run("f2", mesh_order="file", overrides=["scene.mesh_order=file"])))
+        self.assertNotEqual(pairing.setup(curve), pairing.setup(run("f3", mesh_order="file")))
+
     def test_groups_sorted_by_seed_in_order_of_appearance(self):
         runs = [run("s3", seed=3), run("x", budget="full-work/6"), run("s1", seed=1), run("s0", seed=0)]
         self.assertEqual([[r.name for r in g] for g in statistics.repeats(runs)], [["s0", "s1", "s3"], ["x"]])

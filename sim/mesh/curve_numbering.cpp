@@ -1,8 +1,5 @@
 #include "sim/mesh/curve_numbering.hpp"
 
-#include <algorithm>
-#include <numeric>
-
 #include "sim/mesh/morton_key.hpp"
 
 namespace tcb {
@@ -11,12 +8,11 @@ TetMesh vertices_along_curve(const TetMesh& mesh) {
   const std::vector<Vec3>& x = mesh.positions_m;
   if (x.empty()) return mesh;
   const auto [lo, hi] = bounding_box(x);
-  std::vector<std::uint64_t> key(x.size());
-  for (std::size_t v = 0; v < x.size(); ++v) key[v] = morton_key(x[v], lo, hi);
-  std::vector<std::int32_t> order(x.size());  // order[new] = old
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](std::int32_t a, std::int32_t b) { return key[a] < key[b]; });
+  return with_vertices_in_order(mesh, along_curve(x, lo, hi));
+}
 
+TetMesh with_vertices_in_order(const TetMesh& mesh, const std::vector<std::uint32_t>& order) {
+  const std::vector<Vec3>& x = mesh.positions_m;
   std::vector<std::int32_t> renamed(x.size());  // renamed[old] = new
   std::vector<Vec3> positions(x.size());
   std::vector<std::int32_t> file_id(x.size());
@@ -24,7 +20,7 @@ TetMesh vertices_along_curve(const TetMesh& mesh) {
     const auto old = static_cast<std::size_t>(order[v]);
     renamed[old] = static_cast<std::int32_t>(v);
     positions[v] = x[old];
-    file_id[v] = file_vertex(mesh, order[v]);
+    file_id[v] = file_vertex(mesh, static_cast<std::int32_t>(order[v]));
   }
   std::vector<Tet> tets = mesh.tets;
   for (Tet& t : tets)

@@ -40,6 +40,13 @@ namespace tcb {
 /// The mesh with its vertices renumbered along a Morton curve (contract above).
 TetMesh vertices_along_curve(const TetMesh& mesh);
 
+/// The mesh with its vertices renumbered in a given order: vertex v of the
+/// result is vertex order[v] of `mesh` (order a permutation of its
+/// vertices). Tets, parts, the file's counts and file_vertex_id are carried
+/// as vertices_along_curve()'s contract says; it is that function's
+/// renaming, for any order.
+TetMesh with_vertices_in_order(const TetMesh& mesh, const std::vector<std::uint32_t>& order);
+
 /// The file's index of vertex v (v itself when the mesh was not renumbered).
 inline std::int32_t file_vertex(const TetMesh& mesh, std::int32_t v) {
   return mesh.file_vertex_id.empty() ? v : mesh.file_vertex_id[static_cast<std::size_t>(v)];

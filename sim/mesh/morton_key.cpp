@@ -1,6 +1,7 @@
 #include "sim/mesh/morton_key.hpp"
 
 #include <algorithm>
+#include <numeric>
 
 namespace tcb {
 
@@ -23,6 +24,15 @@ std::uint64_t morton_key(const Vec3& p, const Vec3& lo, const Vec3& hi) {
     key |= spread(static_cast<std::uint64_t>(scaled)) << a;
   }
   return key;
+}
+
+std::vector<std::uint32_t> along_curve(const std::vector<Vec3>& points, const Vec3& lo, const Vec3& hi) {
+  std::vector<std::uint64_t> key(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) key[i] = morton_key(points[i], lo, hi);
+  std::vector<std::uint32_t> order(points.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return key[a] < key[b]; });
+  return order;
 }
 
 std::pair<Vec3, Vec3> bounding_box(const std::vector<Vec3>& points) {

@@ -23,6 +23,11 @@ namespace tcb {
 /// The Morton key of p within the box [lo, hi] (file comment).
 std::uint64_t morton_key(const Vec3& p, const Vec3& lo, const Vec3& hi);
 
+/// The points' indices in the order of their Morton keys within [lo, hi],
+/// equal keys in index order (a stable sort): result[k] is the index of the
+/// k-th point along the curve.
+std::vector<std::uint32_t> along_curve(const std::vector<Vec3>& points, const Vec3& lo, const Vec3& hi);
+
 /// The smallest box {lo, hi} holding every point, the box the layouts scale
 /// keys in; points must not be empty.
 std::pair<Vec3, Vec3> bounding_box(const std::vector<Vec3>& points);

@@ -71,6 +71,9 @@ enum class MeshOrder {
   Curve,  ///< renumbered along a Morton curve at load (sim/mesh/curve_numbering.hpp)
 };
 
+/// The scene file's and run.json's spelling: "file" or "curve".
+inline const char* to_string(MeshOrder order) { return order == MeshOrder::Curve ? "curve" : "file"; }
+
 struct WorldDesc {
   std::filesystem::path path;  ///< the file it came from, for errors (empty when built in code)
   /// Applies to meshes read from files and to generated boxes; a latent

@@ -24,22 +24,11 @@ namespace {
 // with keep_map, file_vertex_id maps the result back to the given mesh's
 // file, as a renumbering at load would.
 TetMesh shuffled(const TetMesh& mesh, unsigned seed, bool keep_map = false) {
-  std::vector<std::int32_t> order(mesh.vertex_count());
-  std::iota(order.begin(), order.end(), 0);
+  std::vector<std::uint32_t> order(static_cast<std::size_t>(mesh.vertex_count()));
+  std::iota(order.begin(), order.end(), 0u);
   std::shuffle(order.begin(), order.end(), std::mt19937(seed));
-  std::vector<std::int32_t> renamed(order.size());
-  std::vector<Vec3> x(order.size());
-  for (std::size_t i = 0; i < order.size(); ++i) {
-    renamed[static_cast<std::size_t>(order[i])] = static_cast<std::int32_t>(i);
-    x[i] = mesh.positions_m[static_cast<std::size_t>(order[i])];
-  }
-  std::vector<Tet> tets = mesh.tets;
-  for (Tet& t : tets)
-    for (auto& v : t) v = renamed[static_cast<std::size_t>(v)];
-  TetMesh out = build_tet_mesh(std::move(x), std::move(tets));
-  out.tet_part = mesh.tet_part;
-  if (keep_map)
-    for (const std::int32_t old : order) out.file_vertex_id.push_back(file_vertex(mesh, old));
+  TetMesh out = with_vertices_in_order(mesh, order);
+  if (!keep_map) out.file_vertex_id.clear();  // a file of its own
   return out;
 }
 
