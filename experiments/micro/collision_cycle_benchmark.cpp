@@ -30,7 +30,9 @@
 // threads against 1; the detector's tets, or the dog pair itself, ordered
 // along a Morton curve against the file's order), BM_HashFloorPaired the
 // cycle's tet hashing beside a bare dense-grid build, BM_PointGridPaired its
-// hashing and queries beside a bare grid of the points: see their comments.
+// hashing and queries beside a bare grid of the points, BM_SurfaceWholePaired
+// the surface hashed one triangle a task against as a whole: see their
+// comments.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -417,6 +419,43 @@ void BM_ThreadsPaired(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_ThreadsPaired)->Args({0, 0})->Args({1, 0})->Args({2, 0})->Args({0, 125})->Unit(benchmark::kMillisecond);
+
+// What hashing the surface as a whole on one thread buys, measured side by
+// side: BM_SurfaceWholePaired/<scene> (0 the dog pair, 2 plates20 after 300
+// steps, as in BM_ThreadsPaired) runs two one-thread cycles on one world,
+// the first one triangle a task (CycleSchedule::whole_surface_hash off: the
+// serial insert_box() and build()), the second the whole stage at once
+// (SurfaceHash::hash_all on a pool of the calling thread: the owners'
+// build), both in every iteration (which goes first alternates).
+// speedup: the first's time over the second's (sums over the iterations),
+// speedup_<stage> the same a stage. The same table, work and contacts
+// either way; stops with an error if the contacts differ.
+void BM_SurfaceWholePaired(benchmark::State& state) {
+  const bool dogs = state.range(0) == 0;
+  if (dogs && !have_dog_mesh(state)) return;
+  Fixture f = dogs ? dog_pair() : Fixture{plates20_settled().scene, clone_world(plates20_settled().world)};
+  CollisionSettings settings = resolve_collision_settings(f.world, f.scene.collision, f.scene.world.dt_s);
+  settings.threads = 1;
+  CycleSchedule one_by_one, whole;
+  one_by_one.whole_surface_hash = false;
+  whole.whole_surface_hash = true;
+  CollisionCycle cycles[2] = {CollisionCycle(f.world, settings, DetectionMode::SpatialHash, one_by_one),
+                              CollisionCycle(f.world, settings, DetectionMode::SpatialHash, whole)};
+  CollisionCycle* both[2] = {&cycles[0], &cycles[1]};
+  World* worlds[2] = {&f.world, &f.world};
+  SideBySide pair;  // 0: one triangle a task, 1: the whole stage
+  if (!pair.loop(state, both, worlds, false, [](std::int64_t) {},
+                 "the one-triangle and whole-stage surface hashes found different contacts"))
+    return;
+  state.counters["speedup"] = pair.seconds[1] > 0.0 ? pair.seconds[0] / pair.seconds[1] : 0.0;
+  state.counters["ms_one_by_one"] = pair.ms_per_call(0);
+  state.counters["ms_whole"] = pair.ms_per_call(1);
+  pair.stage_ratios(state, "speedup_", 0, 1);
+  double triangles = 0.0;
+  for (const Body& b : f.world.bodies) triangles += static_cast<double>(b.mesh->surface.size());
+  state.counters["surface_triangles"] = triangles;
+}
+BENCHMARK(BM_SurfaceWholePaired)->Arg(0)->Arg(2)->Unit(benchmark::kMillisecond);
 
 // What ordering along a space-filling curve buys, measured side by side:
 // BM_OrderPaired/<numbering>/<keep>/<scene> runs the dog pair (scene 0; 1:

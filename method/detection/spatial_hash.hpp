@@ -165,10 +165,14 @@ class SpatialHash {
   /// build() touch the whole table for every entry). box_of runs concurrently
   /// on disjoint i.
   /// A HashOverflow is thrown for the first offending box, as serially.
-  /// Call it on an empty table (right after begin_epoch()).
+  /// Call it on an empty table (right after begin_epoch()). With
+  /// `cells_of_box` given (n values), cells_of_box[i] receives the cells box
+  /// i was inserted into (what insert_box() returns for it; 0 for a box
+  /// skipped), for callers that charge each box's work.
   template <typename BoxOf>
   std::size_t insert_all_and_build(std::size_t n, BoxOf&& box_of, WorkerPool& pool,
-                                   std::size_t buckets_per_owner = kBucketsPerOwner);
+                                   std::size_t buckets_per_owner = kBucketsPerOwner,
+                                   std::uint64_t* cells_of_box = nullptr);
 
   /// 16384 buckets of 12 bytes: 192 KiB, within a core's L2 beside the
   /// owner's slice of the sorted items.
@@ -408,7 +412,7 @@ class SpatialHash {
 
 template <typename BoxOf>
 std::size_t SpatialHash::insert_all_and_build(std::size_t n, BoxOf&& box_of, WorkerPool& pool,
-                                              std::size_t buckets_per_owner) {
+                                              std::size_t buckets_per_owner, std::uint64_t* cells_of_box) {
   if (!m_entries.empty() || m_built_in_parts)
     throw std::logic_error("SpatialHash::insert_all_and_build needs an empty table");
   const std::size_t parts = static_cast<std::size_t>(pool.threads());
@@ -437,12 +441,20 @@ std::size_t SpatialHash::insert_all_and_build(std::size_t n, BoxOf&& box_of, Wor
     std::uint32_t item = 0;
     std::size_t count = 0;  // summed here, stored once: cells[] is one cache line for all parts
     for (std::size_t i = begin; i < end; ++i) {
+      bool kept;
       if constexpr (std::is_invocable_v<BoxOf&, int, std::size_t, Vec3&, Vec3&, std::uint32_t&>) {
-        if (!box_of(part, i, lo, hi, item)) continue;
+        kept = box_of(part, i, lo, hi, item);
       } else {
-        if (!box_of(i, lo, hi, item)) continue;
+        kept = box_of(i, lo, hi, item);
       }
-      count += buckets_of_box<true>(lo, hi, [&](std::uint32_t b) { lists[owner_of(b, owner_shift)].push_back({item, b}); });
+      if (!kept) {
+        if (cells_of_box) cells_of_box[i] = 0;
+        continue;
+      }
+      const std::size_t box_cells =
+          buckets_of_box<true>(lo, hi, [&](std::uint32_t b) { lists[owner_of(b, owner_shift)].push_back({item, b}); });
+      if (cells_of_box) cells_of_box[i] = box_cells;
+      count += box_cells;
     }
     cells[p] = count;
   });

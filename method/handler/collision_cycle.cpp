@@ -21,6 +21,7 @@ CollisionCycle::CollisionCycle(const World& world, CollisionSettings settings, D
       m_keep_table(schedule.keep_table && mode == DetectionMode::SpatialHash),
       m_keep_table_rehash_share(schedule.keep_table_rehash_share),
       m_predict_tasks(schedule.predict_tasks),
+      m_whole_surface_hash(schedule.whole_surface_hash),
       m_pairs(world),
       m_detector(world, m_settings.detection),
       m_surface(world, m_settings.detection.cell_size_m, m_settings.detection.hash) {
@@ -394,17 +395,30 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
         if (m_cursor == m_queries.size()) enter(Stage::HashSurface, world);
         break;
       case Stage::HashSurface:
-        if (m_pool && m_surface_body == 0 && m_cursor == 0 && !m_surface_bodies.empty() &&
-            surface_fits(world, budget)) {
-          // The whole stage on the threads: the same table, charged as the
-          // one-triangle tasks below would be, none of which the budget stops.
-          m_surface.hash_all(world, m_surface_bodies, *m_pool, m_surface_work);
-          ++m_parallel_surface_hashes;
-          for (std::size_t i = 0; i + 1 < m_surface_work.size(); ++i) count_task(budget, task_stage, m_surface_work[i]);
-          work = m_surface_work.back();  // not empty: some body with a surface is listed
-          m_surface_body = m_surface_bodies.size();
-          enter(Stage::BorderDepth, world);
-          break;
+        if (m_whole_surface_hash && m_surface_body == 0 && m_cursor == 0 && !m_surface_bodies.empty() &&
+            (m_pool || budget.kind() == BudgetKind::None)) {
+          // The whole stage at once, on the threads or on this one: the same
+          // table, charged as the one-triangle tasks below would be, none of
+          // which the budget stops. One thread takes it too, for the
+          // owners' build (SpatialHash::insert_all_and_build): the serial
+          // insert_box() and build() reach across the whole table for
+          // every entry (micro_collision_cycle BM_SurfaceWholePaired: the
+          // stage 1.19x faster on the dog pair, 1.03x on settled plates20).
+          // But only without a budget: under a work budget, whether it fits
+          // takes a pass over the triangles first, which one thread need not
+          // earn back (plates20 interruptible at 200,000 units a step: the
+          // stage took 1.22x as long with it, one paired run).
+          std::optional<WorkerPool> caller;  // made only when needed: a pool is not free to build
+          WorkerPool& pool = m_pool ? *m_pool : caller.emplace(1);
+          if (surface_fits(world, budget, pool)) {
+            m_surface.hash_all(world, m_surface_bodies, pool, m_surface_work);
+            ++m_whole_surface_hashes;
+            for (std::size_t i = 0; i + 1 < m_surface_work.size(); ++i) count_task(budget, task_stage, m_surface_work[i]);
+            work = m_surface_work.back();  // not empty: some body with a surface is listed
+            m_surface_body = m_surface_bodies.size();
+            enter(Stage::BorderDepth, world);
+            break;
+          }
         }
         if (m_surface_body < m_surface_bodies.size()) {
           const std::int32_t body = m_surface_bodies[m_surface_body];
@@ -549,7 +563,7 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
   return m_stage == Stage::Done;
 }
 
-bool CollisionCycle::surface_fits(const World& world, const Budget& budget) const {
+bool CollisionCycle::surface_fits(const World& world, const Budget& budget, WorkerPool& pool) const {
   // Unlimited: it fits. A work budget: when the stage's work leaves the
   // budget unspent, so no poll among its tasks (nor the build's, under fine
   // tasks) would stop it; each triangle costs at least a unit, so with no
@@ -559,7 +573,7 @@ bool CollisionCycle::surface_fits(const World& world, const Budget& budget) cons
   if (budget.kind() != BudgetKind::Work) return false;
   const double left = budget.limit() - static_cast<double>(budget.spent());
   if (left <= static_cast<double>(SurfaceHash::triangle_count(world, m_surface_bodies))) return false;
-  return m_surface.work_of_all(world, m_surface_bodies, *m_pool) < left;
+  return m_surface.work_of_all(world, m_surface_bodies, pool) < left;
 }
 
 bool CollisionCycle::batch_holds(const World& world) const {

@@ -88,8 +88,10 @@
 /// re-detection changes what later depths read): each depth is computed on a
 /// copy of its contact and taken in order, one a task, with its own work.
 /// A cycle resumed in a later step re-detects its points, and its depths run
-/// serially. The HashSurface stage runs on the pool as a whole
-/// (SurfaceHash::hash_all: the same table) when the step's budget affords it:
+/// serially. The HashSurface stage runs as a whole (SurfaceHash::hash_all:
+/// the same table; on the pool, or on one thread without a budget, where
+/// its owners' build keeps its accesses in a core's cache) when the step's
+/// budget affords it:
 /// without a budget, or under a work budget whose units left exceed the
 /// stage's work (summed on the pool first), so no poll among its tasks would
 /// stop it; each triangle's work is charged as its own task would be, and
@@ -206,6 +208,11 @@ struct CycleSchedule {
   /// are the gaps between the budget's polls; the step's first gap, which
   /// also holds the handler's work before the cycle, is not counted).
   bool predict_tasks = false;
+  /// The HashSurface stage at once when the budget affords it (see above):
+  /// the same table, work and stops as one triangle a task, sooner. A field
+  /// so that tests and benchmarks can run the one-triangle path beside it
+  /// (false), not a setting.
+  bool whole_surface_hash = true;
 };
 
 class CollisionCycle {
@@ -254,16 +261,16 @@ class CollisionCycle {
   const CollisionSettings& settings() const { return m_settings; }
   /// Progress, for schedules and tests: tasks run in this cycle, points
   /// queried, and how many contacts (a prefix of contacts()) have their force.
-  /// Tasks run since begin(). With threads, under fine tasks, a surface hash
-  /// run as a whole on the pool skips the uncharged BuildSurfaceHash tasks,
-  /// so the count (not the work, nor where budgets stop) depends on the
-  /// thread count.
+  /// Tasks run since begin(). Under fine tasks, a surface hash run as a
+  /// whole skips the uncharged BuildSurfaceHash tasks, so the count (not the
+  /// work, nor where budgets stop) depends on whether the stage ran as a
+  /// whole (above: the thread count and the budget decide).
   std::int64_t tasks_done() const { return m_tasks; }
   /// How many tet hashes completed afresh (HashTets, or BuildTetHash's end)
   /// since construction; with keep_table, the other cycles refreshed.
   std::int64_t fresh_tet_hashes() const { return m_fresh_tet_hashes; }
-  /// How many surface hashes ran on the threads as a whole (see above).
-  std::int64_t parallel_surface_hashes() const { return m_parallel_surface_hashes; }
+  /// How many surface hashes ran as a whole, on any thread count (see above).
+  std::int64_t whole_surface_hashes() const { return m_whole_surface_hashes; }
   /// Heap bytes of everything the cycle holds: both hashes, boxes, queries,
   /// contacts and their lookup, batches and every thread's scratch (the
   /// world's meshes and positions are not the cycle's).
@@ -294,9 +301,9 @@ class CollisionCycle {
   void start_layer_scan();
   bool scan_layer_some(const World& world, std::size_t max_contacts);
   bool batch_holds(const World& world) const;
-  /// Whether the whole HashSurface stage may run on the pool now (see
-  /// above); only with a pool (m_pool), at the stage's start.
-  bool surface_fits(const World& world, const Budget& budget) const;
+  /// Whether the whole HashSurface stage may run at once now (see above),
+  /// at the stage's start; `pool` sums its work under a work budget.
+  bool surface_fits(const World& world, const Budget& budget, WorkerPool& pool) const;
   void query_batch(const World& world, const Budget& budget);
   std::size_t batch_size(std::size_t remaining, const Budget& budget) const;
   /// Starts a batch at the cursor (its size from batch_size(), for this
@@ -317,6 +324,7 @@ class CollisionCycle {
   bool m_table_kept = false;       // keep_table: the last tet hash completed, so the next cycle may refresh it
   bool m_opening_refresh = false;  // keep_table: the running refresh stands for the cycle's hash
   bool m_predict_tasks;
+  bool m_whole_surface_hash;
   std::array<double, kCostStages> m_task_ms{};  // predict_tasks: recent task time per reported stage
   std::int64_t m_fresh_step = -1;  // rehash_stale: the step whose positions the tet table (or last refresh) holds
   std::int64_t m_hash_begin_step = -1;
@@ -380,8 +388,8 @@ class CollisionCycle {
   std::size_t m_batch_begin = 0;
   std::int64_t m_batch_step = -1;       // the step whose positions and tables they were computed at
   std::vector<SurfaceHash::QueryScratch> m_surface_scratch;  // [0] the serial path's; with a pool, one a thread
-  std::vector<std::uint64_t> m_surface_work;  // the threads' surface hash: each triangle's work, in walk order
-  std::int64_t m_parallel_surface_hashes = 0;
+  std::vector<std::uint64_t> m_surface_work;  // the whole-stage surface hash: each triangle's work, in walk order
+  std::int64_t m_whole_surface_hashes = 0;
   std::int64_t m_fresh_tet_hashes = 0;
   std::int64_t m_depth_check_step = -1;  // the step depth_batch_allowed() last decided at
   bool m_depth_batchable = false;

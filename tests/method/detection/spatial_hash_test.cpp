@@ -299,8 +299,12 @@ TEST_CASE("spatial hash: the parallel insert and build make the serial table", "
     SpatialHash serial(0.25, 31, function);
     serial.begin_epoch();
     std::size_t serial_cells = 0;
+    std::vector<std::uint64_t> serial_box_cells(boxes.size(), 0);  // each box's cells; 0 where skipped
     for (std::size_t i = 0; i < boxes.size(); ++i)
-      if (!skipped(i)) serial_cells += serial.insert_box(boxes[i].first, boxes[i].second, static_cast<std::uint32_t>(i));
+      if (!skipped(i)) {
+        serial_box_cells[i] = serial.insert_box(boxes[i].first, boxes[i].second, static_cast<std::uint32_t>(i));
+        serial_cells += serial_box_cells[i];
+      }
     serial.build();
     for (int threads = 1; threads <= 3; ++threads)
     for (const std::size_t per_owner : {SpatialHash::kBucketsPerOwner, std::size_t(4)}) {
@@ -308,6 +312,9 @@ TEST_CASE("spatial hash: the parallel insert and build make the serial table", "
       SpatialHash parallel(0.25, 31, function);
       for (int epoch = 0; epoch < 3; ++epoch) {  // later epochs start from stale stamps
         parallel.begin_epoch();
+        // Each box's cells, on odd epochs (the count is optional); stale
+        // values left in it must be overwritten, skipped boxes' too.
+        std::vector<std::uint64_t> box_cells(boxes.size(), 12345);
         const std::size_t cells = parallel.insert_all_and_build(
             boxes.size(),
             [&](std::size_t i, Vec3& lo, Vec3& hi, std::uint32_t& item) {
@@ -315,9 +322,10 @@ TEST_CASE("spatial hash: the parallel insert and build make the serial table", "
               lo = boxes[i].first, hi = boxes[i].second, item = static_cast<std::uint32_t>(i);
               return true;
             },
-            pool, per_owner);
+            pool, per_owner, epoch % 2 == 1 ? box_cells.data() : nullptr);
         INFO("threads " << threads << ", buckets per owner " << per_owner << ", epoch " << epoch);
         CHECK(cells == serial_cells);
+        if (epoch % 2 == 1) CHECK(box_cells == serial_box_cells);
         require_same_table(serial, parallel, boxes);
         // The table is built: a build afterwards (a caller's BuildOverflow
         // task) does nothing, and must not drop the sorted items.

@@ -6,6 +6,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <array>
 #include <set>
 #include <tuple>
@@ -120,6 +121,7 @@ TEST_CASE("threads change neither contacts, depths nor any task's work, one task
       settings.threads = threads;
       CollisionCycle cycle(w, settings);
       cycle.begin(w);
+      cycle.start_step_costs();
       Trace trace;
       for (bool done = false; !done;) {
         Budget zero = Budget::work_units(0);
@@ -134,10 +136,12 @@ TEST_CASE("threads change neither contacts, depths nor any task's work, one task
       Budget unlimited = Budget::unlimited();
       REQUIRE(whole.advance(w, unlimited));
       const Tally tally{whole.tasks_done(), unlimited.spent(), unlimited.max_task_work(), whole.step_costs().work};
-      // Without a budget the surface hash ran on the threads as a whole; one
-      // task a call never affords it.
-      CHECK(whole.parallel_surface_hashes() == (threads > 1 ? 1 : 0));
-      CHECK(cycle.parallel_surface_hashes() == 0);
+      // Without a budget the surface hash ran as a whole, on one thread too;
+      // one task a call never affords it. Each stage's work is the same
+      // either way: the whole hash charges each triangle as its task would.
+      CHECK(whole.whole_surface_hashes() == 1);
+      CHECK(cycle.whole_surface_hashes() == 0);
+      CHECK(whole.step_costs().work == cycle.step_costs().work);
       if (threads == 1) {
         serial_contacts = cycle.contacts();
         serial_trace = trace;
@@ -178,29 +182,36 @@ TEST_CASE("threads change neither contacts, depths nor any task's work, one task
   }
 }
 
-TEST_CASE("the surface hash on threads is charged as one triangle a task, and runs only when the budget affords it",
+TEST_CASE("the surface hash as a whole is charged as one triangle a task, and runs only when the budget affords it",
           "[cycle][threads]") {
   // Work budgets of several sizes a call: where the HashSurface stage fits
-  // in what a call has left, it runs on the threads as a whole; elsewhere one
-  // triangle a task. Every call's stage, work, largest charge and outcome,
-  // and every contact, must be one thread's, both under the paper's tasks
-  // and under fine tasks (whose table builds then run at once).
-  std::int64_t parallel[2] = {0, 0}, serial_with_pool[2] = {0, 0};  // [fine]
+  // in what a call has left, it runs on the pool's threads as a whole;
+  // elsewhere, and always on one thread (which takes the whole stage only
+  // without a budget), one triangle a task. Every call's stage, work,
+  // largest charge and outcome, every stage's work and every contact must
+  // be those of the one-triangle path (CycleSchedule::whole_surface_hash
+  // off) on one thread, both under the paper's tasks and under fine tasks
+  // (whose table builds then run at once).
+  std::int64_t whole[2][2] = {{0, 0}, {0, 0}}, one_by_one[2][2] = {{0, 0}, {0, 0}};  // [fine][threads - 1]
   for (const auto& [name, scene] : test::collision_scenes())
     for (const bool fine : {false, true})
       for (const std::uint64_t units : {std::uint64_t{30}, std::uint64_t{700}, std::uint64_t{20000}}) {
         INFO(name << (fine ? " fine" : " paper's tasks") << " work " << units);
         using Trace = std::vector<std::tuple<int, std::uint64_t, std::uint64_t, bool>>;
-        Trace serial_trace;
-        std::vector<Contact> serial_contacts;
-        for (const int threads : {1, 2}) {
+        Trace reference_trace;
+        std::vector<Contact> reference_contacts;
+        std::array<std::uint64_t, kCostStages> reference_work{};
+        for (const int threads : {0, 1, 2}) {  // 0: the reference, one thread, one triangle a task
+          INFO("threads " << threads);
           World w = build_world(scene);
           CollisionSettings settings = test::settings_of(w, scene);
-          settings.threads = threads;
+          settings.threads = std::max(threads, 1);
           CycleSchedule schedule;
           if (fine) schedule.granularity = TaskGranularity::fine_tasks();
+          schedule.whole_surface_hash = threads > 0;
           CollisionCycle cycle(w, settings, DetectionMode::SpatialHash, schedule);
           cycle.begin(w);
+          cycle.start_step_costs();
           Trace trace;
           for (bool done = false; !done;) {
             Budget budget = Budget::work_units(units);
@@ -208,21 +219,25 @@ TEST_CASE("the surface hash on threads is charged as one triangle a task, and ru
             trace.emplace_back(static_cast<int>(cycle.stage()), budget.spent(), budget.max_task_work(), done);
             REQUIRE(trace.size() < 1000000);
           }
-          if (threads == 1) {
-            serial_trace = trace;
-            serial_contacts = cycle.contacts();
+          if (threads == 0) {
+            CHECK(cycle.whole_surface_hashes() == 0);
+            reference_trace = trace;
+            reference_contacts = cycle.contacts();
+            reference_work = cycle.step_costs().work;
           } else {
-            CHECK(trace == serial_trace);
-            CHECK(same_contacts(cycle.contacts(), serial_contacts));
-            parallel[fine] += cycle.parallel_surface_hashes();
-            serial_with_pool[fine] += cycle.parallel_surface_hashes() == 0 && !serial_contacts.empty();
+            CHECK(trace == reference_trace);
+            CHECK(same_contacts(cycle.contacts(), reference_contacts));
+            CHECK(cycle.step_costs().work == reference_work);
+            whole[fine][threads - 1] += cycle.whole_surface_hashes();
+            one_by_one[fine][threads - 1] += cycle.whole_surface_hashes() == 0 && !reference_contacts.empty();
           }
         }
       }
   for (const int fine : {0, 1}) {
     INFO((fine ? "fine tasks" : "paper's tasks"));
-    CHECK(parallel[fine] > 0);          // some budgets afforded the whole stage
-    CHECK(serial_with_pool[fine] > 0);  // and some did not
+    CHECK(whole[fine][0] == 0);      // one thread under a work budget: never as a whole
+    CHECK(whole[fine][1] > 0);       // some budgets afforded the whole stage on the pool
+    CHECK(one_by_one[fine][1] > 0);  // and some did not
   }
 }
 
