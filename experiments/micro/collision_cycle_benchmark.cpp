@@ -429,7 +429,8 @@ BENCHMARK(BM_ThreadsPaired)->Args({0, 0})->Args({1, 0})->Args({2, 0})->Args({0, 
 // build), both in every iteration (which goes first alternates).
 // speedup: the first's time over the second's (sums over the iterations),
 // speedup_<stage> the same a stage. The same table, work and contacts
-// either way; stops with an error if the contacts differ.
+// either way (collision_cycle_test checks it); stops with an error if the
+// colliding counts differ.
 void BM_SurfaceWholePaired(benchmark::State& state) {
   const bool dogs = state.range(0) == 0;
   if (dogs && !have_dog_mesh(state)) return;

@@ -163,12 +163,14 @@ class SpatialHash {
   /// to the buckets and the sorted items in a core's cache, which is why a
   /// pool of one thread builds this way too (the serial insert_box() and
   /// build() touch the whole table for every entry). box_of runs concurrently
-  /// on disjoint i.
+  /// on disjoint i: each thread calls it for one contiguous range of i, in
+  /// ascending order (so a caller may keep a cursor a part).
   /// A HashOverflow is thrown for the first offending box, as serially.
   /// Call it on an empty table (right after begin_epoch()). With
   /// `cells_of_box` given (n values), cells_of_box[i] receives the cells box
   /// i was inserted into (what insert_box() returns for it; 0 for a box
-  /// skipped), for callers that charge each box's work.
+  /// skipped), for callers that charge each box's work (after a throw,
+  /// some values are left unwritten).
   template <typename BoxOf>
   std::size_t insert_all_and_build(std::size_t n, BoxOf&& box_of, WorkerPool& pool,
                                    std::size_t buckets_per_owner = kBucketsPerOwner,

@@ -88,16 +88,21 @@
 /// re-detection changes what later depths read): each depth is computed on a
 /// copy of its contact and taken in order, one a task, with its own work.
 /// A cycle resumed in a later step re-detects its points, and its depths run
-/// serially. The HashSurface stage runs as a whole (SurfaceHash::hash_all:
-/// the same table; on the pool, or on one thread without a budget, where
-/// its owners' build keeps its accesses in a core's cache) when the step's
-/// budget affords it:
+/// serially. The HashSurface stage runs on the pool as a whole
+/// (SurfaceHash::hash_all: the same table) when the step's budget affords it:
 /// without a budget, or under a work budget whose units left exceed the
 /// stage's work (summed on the pool first), so no poll among its tasks would
 /// stop it; each triangle's work is charged as its own task would be, and
 /// the table is built at once (under fine tasks no BuildSurfaceHash tasks
 /// follow: they charge nothing). Under a wall budget it stays one triangle a
 /// task. Propagation and forces stay on one thread.
+///
+/// On one thread (no pool) the HashSurface stage runs as a whole too, but
+/// only without a budget (on a pool of the calling thread, whose owners'
+/// build keeps its accesses in a core's cache): the same table, work and
+/// contacts. Under a work budget the pass that would sum the stage's work
+/// first is not earned back on one thread, so there it stays one triangle a
+/// task, as under a wall budget.
 
 #include <array>
 #include <cstdint>

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <limits>
 #include <set>
 #include <tuple>
 
@@ -146,9 +147,21 @@ TEST_CASE("threads change neither contacts, depths nor any task's work, one task
         serial_contacts = cycle.contacts();
         serial_trace = trace;
         serial_single = found(cycle);
-        serial_whole = found(whole);
-        serial_tally = tally;
-        serial_whole_contacts = whole.contacts();
+        // The unlimited reference: one thread, the surface one triangle a
+        // task (whole_surface_hash off), as every thread count's whole
+        // cycle, this one's included, must match it.
+        CycleSchedule one_by_one;
+        one_by_one.whole_surface_hash = false;
+        CollisionCycle reference(w, settings, DetectionMode::SpatialHash, one_by_one);
+        reference.begin(w);
+        reference.start_step_costs();
+        Budget reference_budget = Budget::unlimited();
+        REQUIRE(reference.advance(w, reference_budget));
+        CHECK(reference.whole_surface_hashes() == 0);
+        serial_whole = found(reference);
+        serial_tally = Tally{reference.tasks_done(), reference_budget.spent(), reference_budget.max_task_work(),
+                             reference.step_costs().work};
+        serial_whole_contacts = reference.contacts();
         REQUIRE(!serial_single.empty());
         CHECK(serial_single == serial_whole);
         CHECK(std::count_if(serial_single.begin(), serial_single.end(), [](const auto& f) {
@@ -158,9 +171,11 @@ TEST_CASE("threads change neither contacts, depths nor any task's work, one task
         CHECK(trace == serial_trace);
         CHECK(same_contacts(cycle.contacts(), serial_contacts));
         CHECK(found(cycle) == serial_single);
-        CHECK(found(whole) == serial_whole);
-        CHECK(tally == serial_tally);
-        CHECK(same_contacts(whole.contacts(), serial_whole_contacts));  // in list order
+      }
+      CHECK(found(whole) == serial_whole);
+      CHECK(tally == serial_tally);
+      CHECK(same_contacts(whole.contacts(), serial_whole_contacts));  // in list order
+      if (threads > 1) {
         // Under a wall budget (a clock ticking 1 ms a reading, 5 ms a call)
         // batches are sized by time, so where calls stop differs; at fixed
         // positions the contacts may not.
@@ -184,18 +199,19 @@ TEST_CASE("threads change neither contacts, depths nor any task's work, one task
 
 TEST_CASE("the surface hash as a whole is charged as one triangle a task, and runs only when the budget affords it",
           "[cycle][threads]") {
-  // Work budgets of several sizes a call: where the HashSurface stage fits
-  // in what a call has left, it runs on the pool's threads as a whole;
-  // elsewhere, and always on one thread (which takes the whole stage only
-  // without a budget), one triangle a task. Every call's stage, work,
-  // largest charge and outcome, every stage's work and every contact must
-  // be those of the one-triangle path (CycleSchedule::whole_surface_hash
-  // off) on one thread, both under the paper's tasks and under fine tasks
-  // (whose table builds then run at once).
-  std::int64_t whole[2][2] = {{0, 0}, {0, 0}}, one_by_one[2][2] = {{0, 0}, {0, 0}};  // [fine][threads - 1]
+  // Work budgets of several sizes a call, and none: where the HashSurface
+  // stage fits in what a call has left, it runs on the pool's threads as a
+  // whole; elsewhere one triangle a task. One thread takes the whole stage
+  // only without a budget. Every call's stage, work, largest charge and
+  // outcome, every stage's work and every contact must be those of the
+  // one-triangle path (CycleSchedule::whole_surface_hash off) on one thread,
+  // both under the paper's tasks and under fine tasks (whose table builds
+  // then run at once).
+  constexpr std::uint64_t kNoBudget = std::numeric_limits<std::uint64_t>::max();
+  std::int64_t whole[2] = {0, 0}, one_by_one[2] = {0, 0};  // [fine], on 2 threads under work budgets
   for (const auto& [name, scene] : test::collision_scenes())
     for (const bool fine : {false, true})
-      for (const std::uint64_t units : {std::uint64_t{30}, std::uint64_t{700}, std::uint64_t{20000}}) {
+      for (const std::uint64_t units : {std::uint64_t{30}, std::uint64_t{700}, std::uint64_t{20000}, kNoBudget}) {
         INFO(name << (fine ? " fine" : " paper's tasks") << " work " << units);
         using Trace = std::vector<std::tuple<int, std::uint64_t, std::uint64_t, bool>>;
         Trace reference_trace;
@@ -214,7 +230,7 @@ TEST_CASE("the surface hash as a whole is charged as one triangle a task, and ru
           cycle.start_step_costs();
           Trace trace;
           for (bool done = false; !done;) {
-            Budget budget = Budget::work_units(units);
+            Budget budget = units == kNoBudget ? Budget::unlimited() : Budget::work_units(units);
             done = cycle.advance(w, budget);
             trace.emplace_back(static_cast<int>(cycle.stage()), budget.spent(), budget.max_task_work(), done);
             REQUIRE(trace.size() < 1000000);
@@ -228,16 +244,21 @@ TEST_CASE("the surface hash as a whole is charged as one triangle a task, and ru
             CHECK(trace == reference_trace);
             CHECK(same_contacts(cycle.contacts(), reference_contacts));
             CHECK(cycle.step_costs().work == reference_work);
-            whole[fine][threads - 1] += cycle.whole_surface_hashes();
-            one_by_one[fine][threads - 1] += cycle.whole_surface_hashes() == 0 && !reference_contacts.empty();
+            if (units == kNoBudget) {
+              CHECK(cycle.whole_surface_hashes() == 1);  // on one thread too
+            } else if (threads == 1) {
+              CHECK(cycle.whole_surface_hashes() == 0);  // one thread under a work budget: never as a whole
+            } else {
+              whole[fine] += cycle.whole_surface_hashes();
+              one_by_one[fine] += cycle.whole_surface_hashes() == 0 && !reference_contacts.empty();
+            }
           }
         }
       }
   for (const int fine : {0, 1}) {
     INFO((fine ? "fine tasks" : "paper's tasks"));
-    CHECK(whole[fine][0] == 0);      // one thread under a work budget: never as a whole
-    CHECK(whole[fine][1] > 0);       // some budgets afforded the whole stage on the pool
-    CHECK(one_by_one[fine][1] > 0);  // and some did not
+    CHECK(whole[fine] > 0);       // some work budgets afforded the whole stage on the pool
+    CHECK(one_by_one[fine] > 0);  // and some did not
   }
 }
 
