@@ -405,9 +405,10 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
           // every entry (micro_collision_cycle BM_SurfaceWholePaired: the
           // stage 1.19x faster on the dog pair, 1.03x on settled plates20).
           // But only without a budget: under a work budget, whether it fits
-          // takes a pass over the triangles first, which one thread need not
-          // earn back (plates20 interruptible at 200,000 units a step: the
-          // stage took 1.22x as long with it, one paired run).
+          // takes a pass over the triangles first (work_of_all), paid on
+          // one thread in every cycle on top of the hash, and no gain of it
+          // there has been measured; so one thread keeps the one-triangle
+          // tasks under any budget.
           std::optional<WorkerPool> caller;  // made only when needed: a pool is not free to build
           WorkerPool& pool = m_pool ? *m_pool : caller.emplace(1);
           if (surface_fits(world, budget, pool)) {

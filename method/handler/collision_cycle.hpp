@@ -101,8 +101,8 @@
 /// only without a budget (on a pool of the calling thread, whose owners'
 /// build keeps its accesses in a core's cache): the same table, work and
 /// contacts. Under a work budget the pass that would sum the stage's work
-/// first is not earned back on one thread, so there it stays one triangle a
-/// task, as under a wall budget.
+/// first would be paid on one thread every cycle, with no gain measured, so
+/// there it stays one triangle a task, as under a wall budget.
 
 #include <array>
 #include <cstdint>
