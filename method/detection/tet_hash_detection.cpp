@@ -453,10 +453,32 @@ std::optional<Contact> TetHashDetector::query_point(const World& world, const Co
   // charges of the file order (testing in slot order and charging those at
   // or below the best found measured 1.09x plates20's query stage: a hit
   // met late in slot order costs the exact tests the file order skips).
+  // The entries' arrays as plain pointers (the lambdas would otherwise
+  // reload them through `this` after every push_back), and the body of the
+  // entries being scanned, its slot range and whether it is a partner,
+  // looked up once per run of one body's entries (a bucket lists them body
+  // by body, see below) instead of once per entry. The box test comes
+  // before the file id and the stamps: every test here only rejects, and a
+  // tet rejected by its box is rejected again wherever it is met, so the
+  // candidates gathered are the same in any order.
+  const std::int32_t* const owner = m_owner.data();
+  const std::uint32_t* const file_id = m_file_id.data();
+  const TetBox* const boxes = m_boxes.data();
+  std::int32_t run_body = -1;
+  std::uint32_t run_first = 0, run_count = 0;
+  bool run_enabled = false;
   const auto gather = [&](std::uint32_t id) {
-    const std::int32_t other = m_owner[id];
-    if (!pairs.enabled(object, other)) return;
-    const std::uint32_t file = m_file_id[id];
+    if (id - run_first >= run_count) {
+      run_body = owner[id];
+      run_first = m_body_tet_offset[static_cast<std::size_t>(run_body)];
+      run_count = static_cast<std::uint32_t>(world.bodies[static_cast<std::size_t>(run_body)].mesh->tet_count());
+      run_enabled = pairs.enabled(object, run_body);
+    }
+    if (!run_enabled) return;
+    const TetBox& box = boxes[id];
+    const Vec3 lo = box.lo - grow, hi = box.hi + grow;
+    if ((p.array() < lo.array()).any() || (p.array() > hi.array()).any()) return;
+    const std::uint32_t file = file_id[id];
     if (file >= best) return;
     if (one_bucket) {
       if (id == last) return;
@@ -465,10 +487,7 @@ std::optional<Contact> TetHashDetector::query_point(const World& world, const Co
       if (scratch.tested[id] == scratch.query) return;
       scratch.tested[id] = scratch.query;
     }
-    if (other == object && incident(m_slot_tets[id], vertex)) return;
-    const TetBox& box = m_boxes[id];
-    const Vec3 lo = box.lo - grow, hi = box.hi + grow;
-    if ((p.array() < lo.array()).any() || (p.array() > hi.array()).any()) return;
+    if (run_body == object && incident(m_slot_tets[id], vertex)) return;
     candidates.push_back(std::uint64_t(file) << 32 | id);
   };
   const auto test_candidates = [&] {
