@@ -15,14 +15,14 @@ SurfaceHash::SurfaceHash(const World& world, double cell_size_m, HashFunction ha
     m_offset.push_back(total);
     const auto n = world.bodies[b].mesh->surface.size();
     total += static_cast<std::uint32_t>(n);
-    m_owner.insert(m_owner.end(), n, static_cast<std::int32_t>(b));
   }
+  m_offset.push_back(total);
   m_hash = SpatialHash(cell_size_m, next_prime(2 * std::size_t(total) + 1), hash);
   m_boxes.resize(total);
 }
 
 std::size_t SurfaceHash::memory_bytes() const {
-  return m_hash.memory_bytes() + heap_bytes(m_offset) + heap_bytes(m_owner) + heap_bytes(m_boxes);
+  return m_hash.memory_bytes() + heap_bytes(m_offset) + heap_bytes(m_boxes);
 }
 
 void SurfaceHash::triangle_box(const World& world, std::int32_t body, std::int32_t triangle, Vec3& lo,

@@ -71,8 +71,8 @@ class SurfaceHash {
     std::vector<std::uint64_t> seen;
     std::uint64_t query = 0;
   };
-  QueryScratch make_scratch() const { return QueryScratch{std::vector<std::uint64_t>(m_owner.size(), 0), 0}; }
-  /// Heap bytes of the table, its triangle index and the hashed boxes (48
+  QueryScratch make_scratch() const { return QueryScratch{std::vector<std::uint64_t>(m_boxes.size(), 0), 0}; }
+  /// Heap bytes of the table, the bodies' offsets and the hashed boxes (48
   /// bytes a triangle; not the scratches).
   std::size_t memory_bytes() const;
 
@@ -95,11 +95,17 @@ class SurfaceHash {
   /// Calls f(triangle) for each distinct triangle of `body` hashed in the cells of [lo, hi].
   template <typename F>
   void for_each_candidate(std::int32_t body, const Vec3& lo, const Vec3& hi, QueryScratch& scratch, F&& f) const {
-    ++scratch.query;
+    // A triangle of `body` is an id in its range: an entry of another body
+    // is told by arithmetic, without a read (a bucket's entries are mostly
+    // other bodies' where bodies touch).
+    const std::uint32_t first = m_offset[static_cast<std::size_t>(body)];
+    const std::uint32_t count = m_offset[static_cast<std::size_t>(body) + 1] - first;
+    std::uint64_t* const seen = scratch.seen.data();
+    const std::uint64_t query = ++scratch.query;
     m_hash.for_each_in_box(lo, hi, [&](std::uint32_t id) {
-      if (m_owner[id] != body || scratch.seen[id] == scratch.query) return;
-      scratch.seen[id] = scratch.query;
-      f(static_cast<std::int32_t>(id - m_offset[body]));
+      if (id - first >= count || seen[id] == query) return;
+      seen[id] = query;
+      f(static_cast<std::int32_t>(id - first));
     });
   }
 
@@ -119,8 +125,8 @@ class SurfaceHash {
   /// The k with first[k] <= i < first[k + 1].
   static std::size_t body_at(const std::vector<std::size_t>& first, std::size_t i);
   SpatialHash m_hash;
+  /// Per body, the id of its first triangle; one more entry, the total.
   std::vector<std::uint32_t> m_offset;
-  std::vector<std::int32_t> m_owner;
   /// Each triangle's box as hashed, by id (its body's offset + index): the
   /// border-edge search rejects most candidates on it, one read in place of
   /// the triangle's corners (4 scattered reads), when boxes_at() the step.
