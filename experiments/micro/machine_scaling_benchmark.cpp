@@ -143,7 +143,7 @@ void BM_Gather(benchmark::State& state) {
 // MiB, where one thread's share of the last-level cache runs out: on the
 // development VM that share moved from run to run (8 MiB: 30 to 114 ns an
 // item on one thread), and two threads gained least at 4 MiB (1.09x to
-// 1.69x in four runs, against 1.6-1.8x at 1 MiB and 1.7-2.0x from memory),
+// 1.69x in four runs, against 1.57-1.78x at 1 MiB and 1.73-2.16x from memory),
 // the regime the dog pair's cycle works in.
 BENCHMARK(BM_FmaThroughput)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FmaLatency)->Unit(benchmark::kMillisecond);

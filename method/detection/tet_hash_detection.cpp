@@ -117,6 +117,7 @@ TetHashDetector::TetHashDetector(const World& world, const DetectionSettings& se
     }
     total += static_cast<std::uint32_t>(mesh.tet_count());
   }
+  m_body_tet_offset.push_back(total);
   m_slot_of.resize(total);
   for (std::uint32_t slot = 0; slot < total; ++slot) m_slot_of[m_file_id[slot]] = slot;
   m_boxes.resize(total, TetBox{Vec3::Zero(), Vec3::Zero()});
@@ -412,7 +413,7 @@ std::optional<Contact> TetHashDetector::query_point(const World& world, const Co
   // read: most entries near a surface are the body's own.
   const std::uint32_t own_first = m_body_tet_offset[static_cast<std::size_t>(object)];
   const std::uint32_t own_count =
-      pairs.enabled(object, object) ? 0 : static_cast<std::uint32_t>(world.bodies[object].mesh->tet_count());
+      pairs.enabled(object, object) ? 0 : m_body_tet_offset[static_cast<std::size_t>(object) + 1] - own_first;
   const Vec3 grow = Vec3::Constant(margin_m);
   if (!(margin_m <= 0.0) && m_hash.dense())
     throw std::logic_error("TetHashDetector: a widened query needs enable_widening() before the hash");
@@ -439,7 +440,7 @@ std::optional<Contact> TetHashDetector::query_point(const World& world, const Co
   // A tet met twice is tested once. In one bucket its entries are adjacent
   // (insert_box() puts all of a tet's cells in at once, and a bucket keeps
   // insertion order), so a query of one cell in the main table alone skips a
-  // repeat of the last slot without touching memory; a query over several
+  // repeat of the last slot without a stamp; a query over several
   // buckets, or the overflow table too, stamps each tet met.
   const bool one_bucket = !(margin_m > 0.0) && !m_overflow_active;
   std::uint32_t last = UINT32_MAX;
@@ -471,7 +472,7 @@ std::optional<Contact> TetHashDetector::query_point(const World& world, const Co
     if (id - run_first >= run_count) {
       run_body = owner[id];
       run_first = m_body_tet_offset[static_cast<std::size_t>(run_body)];
-      run_count = static_cast<std::uint32_t>(world.bodies[static_cast<std::size_t>(run_body)].mesh->tet_count());
+      run_count = m_body_tet_offset[static_cast<std::size_t>(run_body) + 1] - run_first;
       run_enabled = pairs.enabled(object, run_body);
     }
     if (!run_enabled) return;
@@ -500,7 +501,7 @@ std::optional<Contact> TetHashDetector::query_point(const World& world, const Co
       work += work::kCandidate;
       if (point_in_tet_perturbed(p, x[tet[0]], x[tet[1]], x[tet[2]], x[tet[3]])) {
         best = static_cast<std::uint32_t>(c >> 32);
-        best_body_end = m_body_tet_offset[other] + static_cast<std::uint32_t>(world.bodies[other].mesh->tet_count());
+        best_body_end = m_body_tet_offset[other + 1];
         return;
       }
     }

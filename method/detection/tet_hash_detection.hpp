@@ -239,7 +239,9 @@ class TetHashDetector {
   };
   std::vector<LeftIds> m_part_left;
   std::vector<std::uint32_t> m_left_ids;
-  std::vector<std::uint32_t> m_body_tet_offset;       // global tet id = offset[body] + tet (slots the same)
+  // Global tet id = offset[body] + tet (slots the same); one more entry, the
+  // total, so a body's ids are [offset[body], offset[body + 1]).
+  std::vector<std::uint32_t> m_body_tet_offset;
   std::vector<std::int32_t> m_owner;                  // global tet id or slot -> body (dense: the first filter)
   // The slots (file comment: "Tet numbering"): per slot, its global tet id
   // in the file's numbering, its vertex indices and whether it is

@@ -59,7 +59,8 @@ inline CollisionSettings settings_of(const World& world, const TestScene& scene)
 
 /// Small scenes with collisions of every kind the detection must get right,
 /// named: overlapping bodies, the face-on-face plate stack, a real mesh pair,
-/// a passive obstacle, self-collision. The detection tests run over all of them.
+/// a passive obstacle, two passive bodies through each other (a disabled
+/// pair), self-collision. The detection tests run over all of them.
 inline std::vector<std::pair<std::string, TestScene>> collision_scenes() {
   const std::string data = TCBENCH_DATA_DIR;
   std::vector<std::pair<std::string, TestScene>> s;
@@ -74,6 +75,13 @@ inline std::vector<std::pair<std::string, TestScene>> collision_scenes() {
                           data));
   s.emplace_back("passive obstacle", scene_of({{"floor", "box:size=1x0.1x1,cells=5x1x5", Vec3::Zero(), true},
                                                {"cube", "box:size=0.2x0.2x0.2,cells=3x3x3", Vec3(0.1, 0.12, 0.0)}}));
+  // Two passive bodies through each other: their pair is disabled, so the
+  // wall's vertices inside the floor (and the floor's inside the wall) are
+  // no contacts, while both are the cube's partners.
+  s.emplace_back("two passive obstacles through each other",
+                 scene_of({{"floor", "box:size=1x0.1x1,cells=5x1x5", Vec3::Zero(), true},
+                           {"wall", "box:size=0.1x0.4x0.6,cells=1x4x3", Vec3(0.2, 0.1, 0.0), true},
+                           {"cube", "box:size=0.2x0.2x0.2,cells=3x3x3", Vec3(-0.1, 0.12, 0.0)}}));
   s.emplace_back("self-collision of a folded pair",
                  scene_of({{"self", "box:size=0.2x0.2x0.2,cells=2x2x2", Vec3::Zero(), false, true},
                            {"other", "box:size=0.2x0.2x0.2,cells=2x2x2", Vec3(0.05, 0.05, 0.05)}}));
