@@ -6,7 +6,8 @@
 //   BM_Ours:  the method's spatial hash of tets + exact perturbed point-in-tet
 //             (TetHashDetector: hash_tets, then query_point per vertex, as a
 //             cycle without a budget runs them: a dense grid, leaving out
-//             tets apart from the other object's vertex box);
+//             tets apart from the other object's vertex box, and each
+//             tet's cells that hold no vertex of the other object);
 //   BM_Cgal:  what a CGAL user writes: CGAL::box_intersection_d between point
 //             boxes and tet boxes, then exact orientation predicates (Epick);
 //   BM_Fcl:   what an FCL user writes: DynamicAABBTreeCollisionManager with

@@ -564,3 +564,81 @@ TEST_CASE("spatial hash: a dense grid too large or not finite is refused and the
   CHECK(below.first == below.last);
   CHECK(above.first == above.last);
 }
+
+TEST_CASE("spatial hash: an entry the caller's keep refuses is left out and its cell still counted, on any thread "
+          "count; grid_cell names the bucket a point's cell reads",
+          "[hash][dense][threads]") {
+  // Random boxes in a dense grid, inserted at once with a keep that refuses
+  // about a third of the entries by item and bucket (the bucket it is given
+  // must be the one the entry goes to). Each cell must list exactly the
+  // items of the table built without keep whose entry keep accepts for the
+  // bucket grid_cell gives the cell's centre, in the same order; the cells
+  // counted, and each box's, as without keep; on 1 to 3 threads, with
+  // owners of 16384 and of 4 buckets. Outside the grid, and in a table
+  // that hashes, grid_cell is kOutsideGrid.
+  std::mt19937 rng(29);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), size(0.0, 0.6);
+  const double cell = 0.25;
+  Boxes boxes;
+  for (int i = 0; i < 300; ++i) {
+    const Vec3 lo(u(rng), u(rng), u(rng));
+    boxes.emplace_back(lo, lo + Vec3(size(rng), size(rng), size(rng)));
+  }
+  Vec3 grid_lo = boxes[0].first, grid_hi = boxes[0].second;
+  for (const auto& [lo, hi] : boxes) grid_lo = grid_lo.cwiseMin(lo), grid_hi = grid_hi.cwiseMax(hi);
+  const auto box_of = [&](std::size_t i, Vec3& lo, Vec3& hi, std::uint32_t& item) {
+    lo = boxes[i].first, hi = boxes[i].second, item = static_cast<std::uint32_t>(i);
+    return true;
+  };
+  const auto accepts = [](std::uint32_t item, std::size_t bucket) { return (item * 7 + bucket) % 3 != 0; };
+  const auto keep = [&](std::uint32_t item) { return [=](std::uint32_t bucket) { return accepts(item, bucket); }; };
+  WorkerPool one(1);
+  SpatialHash whole(cell, 31, HashFunction::Mixed);
+  REQUIRE(whole.begin_epoch_dense(grid_lo, grid_hi, 100000));
+  std::vector<std::uint64_t> whole_box_cells(boxes.size(), 0);
+  const std::size_t whole_cells = whole.insert_all_and_build(boxes.size(), box_of, one,
+                                                             SpatialHash::kBucketsPerOwner, whole_box_cells.data());
+  const auto floor_cell = [&](double x) { return static_cast<std::int64_t>(std::floor(x * (1.0 / cell))); };
+  for (int threads = 1; threads <= 3; ++threads)
+    for (const std::size_t per_owner : {SpatialHash::kBucketsPerOwner, std::size_t(4)}) {
+      INFO("threads " << threads << ", buckets per owner " << per_owner);
+      WorkerPool pool(threads);
+      SpatialHash kept(cell, 31, HashFunction::Mixed);
+      REQUIRE(kept.begin_epoch_dense(grid_lo, grid_hi, 100000));
+      REQUIRE(kept.grid_cells() == whole.grid_cells());
+      std::vector<std::uint64_t> box_cells(boxes.size(), 12345);
+      CHECK(kept.insert_all_and_build(boxes.size(), box_of, pool, per_owner, box_cells.data(), keep) == whole_cells);
+      CHECK(box_cells == whole_box_cells);
+      std::size_t entries = 0, refused = 0, outside = 0;
+      std::set<std::size_t> buckets;
+      for (std::int64_t i = floor_cell(grid_lo.x()) - 1; i <= floor_cell(grid_hi.x()) + 1; ++i)
+        for (std::int64_t j = floor_cell(grid_lo.y()) - 1; j <= floor_cell(grid_hi.y()) + 1; ++j)
+          for (std::int64_t k = floor_cell(grid_lo.z()) - 1; k <= floor_cell(grid_hi.z()) + 1; ++k) {
+            const Vec3 centre = cell * Vec3(double(i) + 0.5, double(j) + 0.5, double(k) + 0.5);
+            const std::size_t bucket = kept.grid_cell(centre);
+            const SpatialHash::Entries all = whole.cell_entries(centre), got = kept.cell_entries(centre);
+            if (bucket == SpatialHash::kOutsideGrid) {
+              ++outside;
+              REQUIRE(got.first == got.last);
+              continue;
+            }
+            REQUIRE(bucket < kept.grid_cells());
+            CHECK(buckets.insert(bucket).second);  // one cell a bucket
+            std::vector<std::uint32_t> want;
+            for (const std::uint32_t* it = all.first; it != all.last; ++it)
+              if (accepts(*it, bucket)) want.push_back(*it);
+            INFO("cell " << i << " " << j << " " << k);
+            REQUIRE(std::vector<std::uint32_t>(got.first, got.last) == want);
+            entries += want.size();
+            refused += static_cast<std::size_t>(all.last - all.first) - want.size();
+          }
+      CHECK(entries == kept.entry_count());
+      CHECK(buckets.size() == kept.grid_cells());
+      CHECK(refused > 0);
+      CHECK(outside > 0);
+    }
+  SpatialHash hashing(cell, 31, HashFunction::Mixed);
+  hashing.begin_epoch();
+  CHECK(hashing.grid_cells() == 0);
+  CHECK(hashing.grid_cell(Vec3::Zero()) == SpatialHash::kOutsideGrid);
+}

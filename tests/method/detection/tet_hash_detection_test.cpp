@@ -12,10 +12,12 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <optional>
 #include <set>
 #include <stdexcept>
 #include <tuple>
+#include <utility>
 
 #include "method/geometry/perturbed_predicates.hpp"
 #include "method/handler/work_units.hpp"
@@ -100,6 +102,63 @@ void require_same_queries(const World& world, const CollisionPairs& pairs, TetHa
       REQUIRE(got_hit.has_value() == want_hit.has_value());
       if (got_hit) CHECK(std::tie(got_hit->other, got_hit->tet) == std::tie(want_hit->other, want_hit->tet));
     }
+}
+
+// The entries of a table hashed for queries at its own positions, counted
+// here without it (hash_tets() header): each non-degenerate tet of a walked
+// body b whose box is not strictly apart from the box around the other
+// walked bodies' vertices (never apart when b collides with itself) is
+// entered into each cell of its box holding a vertex of another walked body
+// (of any walked body, with self-collision), unless every walked body
+// collides with itself (then the cells are not told apart). `tets_only`:
+// the entries with only the first rule (every cell of each such tet's box).
+// Cells cut as the table cuts them (SpatialHash::cell_of).
+struct ReachableEntries {
+  std::size_t tets_only = 0, cells_too = 0;
+};
+ReachableEntries reachable_entries(const World& world, const CollisionPairs& pairs, double cell_m) {
+  const SpatialHash cuts(cell_m, 1, HashFunction::Mixed);
+  using Cell = std::tuple<std::int64_t, std::int64_t, std::int64_t>;
+  std::map<Cell, std::set<std::size_t>> holders;  // a cell's walked bodies with a vertex in it
+  const std::size_t n = world.bodies.size();
+  std::vector<BoxUnion> vertex_box(n);
+  for (std::size_t b = 0; b < n; ++b) {
+    if (!pairs.has_partner(b)) continue;
+    for (const Vec3& p : world.bodies[b].x_m) {
+      holders[Cell{cuts.cell_of(p.x()), cuts.cell_of(p.y()), cuts.cell_of(p.z())}].insert(b);
+      vertex_box[b].add_box(p, p);
+    }
+  }
+  ReachableEntries out;
+  bool cells_told_apart = false;
+  for (std::size_t b = 0; b < n; ++b) cells_told_apart = cells_told_apart || (pairs.has_partner(b) && !pairs.enabled(b, b));
+  for (std::size_t b = 0; b < n; ++b) {
+    if (!pairs.has_partner(b)) continue;
+    const bool self = pairs.enabled(b, b);
+    BoxUnion others;
+    for (std::size_t o = 0; o < n; ++o)
+      if (o != b && pairs.has_partner(o)) others.add_union(vertex_box[o]);
+    const Body& body = world.bodies[b];
+    for (std::size_t t = 0; t < body.mesh->tets.size(); ++t) {
+      if (body.mesh->is_degenerate[t]) continue;
+      Vec3 lo = body.x_m[body.mesh->tets[t][0]], hi = lo;
+      for (int k = 1; k < 4; ++k) {
+        lo = lo.cwiseMin(body.x_m[body.mesh->tets[t][k]]);
+        hi = hi.cwiseMax(body.x_m[body.mesh->tets[t][k]]);
+      }
+      if (!self && others.misses(lo, hi)) continue;
+      for (std::int64_t i = cuts.cell_of(lo.x()); i <= cuts.cell_of(hi.x()); ++i)
+        for (std::int64_t j = cuts.cell_of(lo.y()); j <= cuts.cell_of(hi.y()); ++j)
+          for (std::int64_t k = cuts.cell_of(lo.z()); k <= cuts.cell_of(hi.z()); ++k) {
+            ++out.tets_only;
+            const auto it = holders.find(Cell{i, j, k});
+            if (!cells_told_apart ||
+                (it != holders.end() && (self || it->second.size() > 1 || *it->second.begin() != b)))
+              ++out.cells_too;
+          }
+    }
+  }
+  return out;
 }
 
 std::uint64_t refresh(const World& world, const CollisionPairs& pairs, TetHashDetector& detector,
@@ -521,24 +580,30 @@ TEST_CASE("a hash made for queries at its own positions leaves out the tets no q
           "finds and is charged what it would with them in",
           "[detection][threads]") {
   // hash_tets(..., queries_at_these_positions = true) skips a tet strictly
-  // apart from the box around the other walked bodies' vertices. Every vertex's
+  // apart from the box around the other walked bodies' vertices, and, in a
+  // dense grid, enters the others only into cells where a vertex of another
+  // walked body lies. Every vertex's
   // query must give the same contact and work as with the full table, the
-  // hash the same work, on 0 to 2 threads; the table must hold fewer entries
-  // where bodies stand apart (or the test checks nothing), and nothing may be
+  // hash the same work, on 0 to 2 threads; the table must hold exactly the
+  // entries reachable_entries() counts, fewer than the tet rule alone
+  // somewhere (or the test checks nothing), and nothing may be
   // left out once refreshing is enabled (a refreshed table serves later
   // positions). A self-colliding body's tets, which its own vertices query,
   // must all stay in: the folded pair's own queries check that.
-  bool some_skipped = false;
+  bool some_skipped = false, some_cells_left_out = false, some_all_self = false;
   for_each_scene_apart([&](World& world, const CollisionPairs& pairs, const DetectionSettings& settings) {
     TetHashDetector full(world, settings);
     const std::uint64_t full_work = full.hash_tets(world, pairs);
+    const ReachableEntries want = reachable_entries(world, pairs, settings.cell_size_m);
     for (const int threads : {0, 1, 2}) {
       INFO(threads << " threads");
       WorkerPool pool(std::max(threads, 1));
       TetHashDetector reached(world, settings);
       CHECK(reached.hash_tets(world, pairs, threads > 0 ? &pool : nullptr, true) == full_work);
-      CHECK(reached.hash().entry_count() <= full.hash().entry_count());
-      some_skipped = some_skipped || reached.hash().entry_count() < full.hash().entry_count();
+      REQUIRE(reached.hash().dense());  // every test scene's grid is small enough
+      CHECK(reached.hash().entry_count() == want.cells_too);
+      some_skipped = some_skipped || want.tets_only < full.hash().entry_count();
+      some_cells_left_out = some_cells_left_out || want.cells_too < want.tets_only;
       require_same_queries(world, pairs, full, reached);
       for (std::size_t b = 0; b < world.bodies.size(); ++b) {
         CHECK(reached.body_box(b).lo == full.body_box(b).lo);  // every box stored, skipped or not
@@ -549,8 +614,24 @@ TEST_CASE("a hash made for queries at its own positions leaves out the tets no q
     refreshing.enable_refresh();
     CHECK(refreshing.hash_tets(world, pairs, nullptr, true) == full_work);
     CHECK(refreshing.hash().entry_count() == full.hash().entry_count());
+    // Every active body colliding with itself too: each one's own vertices
+    // then query its tets, and the cells are no longer told apart.
+    bool any_self = false;
+    for (Body& b : world.bodies) any_self = std::exchange(b.self_collision, true) || any_self;
+    if (!any_self) return;
+    INFO("every body with self-collision");
+    const CollisionPairs all_self(world);
+    TetHashDetector full_self(world, settings), reached_self(world, settings);
+    CHECK(reached_self.hash_tets(world, all_self, nullptr, true) == full_self.hash_tets(world, all_self));
+    const ReachableEntries want_self = reachable_entries(world, all_self, settings.cell_size_m);
+    CHECK(want_self.cells_too == want_self.tets_only);
+    CHECK(reached_self.hash().entry_count() == want_self.cells_too);
+    require_same_queries(world, all_self, full_self, reached_self);
+    some_all_self = true;
   });
   CHECK(some_skipped);
+  CHECK(some_cells_left_out);
+  CHECK(some_all_self);
 }
 
 TEST_CASE("a dense grid in place of the hash answers and charges every query, and the hash, as the hashed table; "
@@ -582,7 +663,12 @@ TEST_CASE("a dense grid in place of the hash answers and charges every query, an
         TetHashDetector dense(world, settings);
         CHECK(dense.hash_tets(world, pairs, threads > 0 ? &pool : nullptr, skip) == hashed_work);
         REQUIRE(dense.hash().dense());
-        CHECK(dense.hash().entry_count() == hashed.hash().entry_count());
+        // Skipping, the grid also leaves out a tet's cells that hold no
+        // other body's vertex, which the hash cannot tell apart in a bucket.
+        if (skip)
+          CHECK(dense.hash().entry_count() <= hashed.hash().entry_count());
+        else
+          CHECK(dense.hash().entry_count() == hashed.hash().entry_count());
         // At the hash's positions, then moved on (a cycle spanning steps
         // queries its table later: unless skipping, which promises not).
         require_same_queries(world, pairs, hashed, dense);
