@@ -630,9 +630,9 @@ BesideCycle time_beside_cycle(benchmark::State& state, CollisionCycle& cycle, Wo
 // grid, a fill. It keeps no boxes, no body unions, no work charge, no
 // overflow check, no threads, nothing the budgets need; it is a reference,
 // not a detector. It enters a tet into every cell of its box, where the
-// cycle now leaves out the cells holding no other body's vertex
-// (TetHashDetector::hash_tets): a floor for a build of every cell, which the
-// cycle may pass (the dog pair: 0.77). floor_ratio: the cycle's hash_tets
+// cycle leaves out the cells holding no other body's vertex
+// (TetHashDetector::hash_tets): the floor of a build into every cell, which
+// the cycle, entering fewer, may pass (the dog pair: 0.77). floor_ratio: the cycle's hash_tets
 // stage time over the bare build's (sums over the iterations);
 // entries_ratio: the bare build's entries over cells_per_tet x tets (1 when
 // it left out no tets; below 1 by the share of cells it left out).

@@ -253,7 +253,8 @@ bool TetHashDetector::tag_query_cells(const World& world, const CollisionPairs& 
   // which left out too little to pay for the tags (finger_curl's tet hash
   // took 0.108 ms a step with them, 0.087 without).
   bool pays = false;
-  for (std::size_t o = 0; o < world.bodies.size(); ++o) pays = pays || (walked(world, pairs, o, false) && !pairs.enabled(o, o));
+  for (std::size_t o = 0; o < world.bodies.size(); ++o)
+    pays = pays || (walked(world, pairs, o, false) && !pairs.enabled(o, o));
   if (!pays) return false;
   // Last hash's tags cleared cell by cell, not the whole array: a grid
   // over bodies far apart has many cells and few tagged (fast_sphere_torus:

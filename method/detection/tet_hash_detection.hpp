@@ -140,7 +140,8 @@ class TetHashDetector {
   /// dense grid over the cells of the walked bodies' vertices where that
   /// range has at most kDenseCellsPerBucket cells a hash bucket and
   /// kDenseCellsPerTet a tet (spatial_hash.hpp; 12 bytes a cell, the
-  /// buckets kept at their largest: at most 96 bytes a tet): a query of the
+  /// buckets kept at their largest: at most 96 bytes a tet, and 32 more for
+  /// the tags of hash_tets() skipping): a query of the
   /// point's cell then meets the tets that pass its box test in the hash's
   /// order (the same answers and work, cheaper to build and read), but a
   /// search over several cells, or over the main table and an overflow with
@@ -279,8 +280,10 @@ class TetHashDetector {
   std::vector<BoxUnion> m_query_reach;
   void reach_of_queries(const World& world, const CollisionPairs& pairs, const std::vector<BoxUnion>& vertices);
   /// Per cell of this epoch's dense grid, when hash_tets() leaves out what
-  /// no query reaches: the walked body whose vertices alone lie in it,
-  /// kNoVertex (none) or kSeveralBodies. A tet of body b is entered into a
+  /// no query reaches: the walked body whose tagged vertices alone lie in
+  /// it, kNoVertex (none) or kSeveralBodies (a vertex is tagged where its
+  /// cell is within the cells of its body's m_query_reach: see
+  /// tag_query_cells()). A tet of body b is entered into a
   /// cell only where that tag is neither kNoVertex nor m_own_tag[b] (b, or
   /// kNeverTag when b collides with itself): only points in a cell query it,
   /// and b's own points skip b's tets unread and uncharged. Kept at the

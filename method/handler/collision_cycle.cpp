@@ -317,7 +317,8 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
           // Unlimited, this call runs the cycle to its end: every query of
           // the table is made at these positions, so unless they are widened
           // (widen_stale, once a cycle spans steps) the detector may leave
-          // out the tets no query point can reach (the same answers and work).
+          // out the tets, and cells of tets, no query point can reach (the
+          // same answers and work).
           work = m_detector.hash_tets(world, m_pairs, m_pool.get(),
                                       budget.kind() == BudgetKind::None && !(m_tet_margin_m > 0.0));
           m_fresh_step = world.step_index;

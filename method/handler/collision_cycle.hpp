@@ -80,7 +80,8 @@
 /// HashTets task (not fine tasks, whose pieces stay serial) also runs on the
 /// pool (TetHashDetector::hash_tets with a pool): the same table, boxes and
 /// work units on any thread count (without a budget and unwidened, a table
-/// without the tets no query point reaches: the same answers and work); so does a RefreshTets task at that granularity
+/// without the tets, or cells of tets, no query point reaches: the same
+/// answers and work); so does a RefreshTets task at that granularity
 /// (TetHashDetector::refresh_tets: the boxes checked on the pool, the
 /// overflow filled in slot order: the same overflow and work units). The paper's BorderDepth tasks (not fine tasks) are batched the
 /// same way when every contact from the cursor on was detected at the

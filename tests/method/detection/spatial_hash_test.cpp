@@ -574,15 +574,19 @@ TEST_CASE("spatial hash: an entry the caller's keep refuses is left out and its 
   // items of the table built without keep whose entry keep accepts for the
   // bucket grid_cell gives the cell's centre, in the same order; the cells
   // counted, and each box's, as without keep; on 1 to 3 threads, with
-  // owners of 16384 and of 4 buckets. Outside the grid, and in a table
-  // that hashes, grid_cell is kOutsideGrid.
+  // owners of 16384 and of 4 buckets. A few large boxes (5 to 7 cells an
+  // axis) keep more cells than one of the insert's batches holds. Outside
+  // the grid, and in a table that hashes, grid_cell is kOutsideGrid.
   std::mt19937 rng(29);
-  std::uniform_real_distribution<double> u(-1.0, 1.0), size(0.0, 0.6);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), size(0.0, 0.6), large(1.2, 1.7);
   const double cell = 0.25;
   Boxes boxes;
-  for (int i = 0; i < 300; ++i) {
+  for (int i = 0; i < 308; ++i) {
     const Vec3 lo(u(rng), u(rng), u(rng));
-    boxes.emplace_back(lo, lo + Vec3(size(rng), size(rng), size(rng)));
+    if (i % 40 == 7)
+      boxes.emplace_back(lo, lo + Vec3(large(rng), large(rng), large(rng)));
+    else
+      boxes.emplace_back(lo, lo + Vec3(size(rng), size(rng), size(rng)));
   }
   Vec3 grid_lo = boxes[0].first, grid_hi = boxes[0].second;
   for (const auto& [lo, hi] : boxes) grid_lo = grid_lo.cwiseMin(lo), grid_hi = grid_hi.cwiseMax(hi);
@@ -611,6 +615,7 @@ TEST_CASE("spatial hash: an entry the caller's keep refuses is left out and its 
       CHECK(box_cells == whole_box_cells);
       std::size_t entries = 0, refused = 0, outside = 0;
       std::set<std::size_t> buckets;
+      std::vector<std::size_t> kept_of(boxes.size(), 0);  // each box's entries kept
       for (std::int64_t i = floor_cell(grid_lo.x()) - 1; i <= floor_cell(grid_hi.x()) + 1; ++i)
         for (std::int64_t j = floor_cell(grid_lo.y()) - 1; j <= floor_cell(grid_hi.y()) + 1; ++j)
           for (std::int64_t k = floor_cell(grid_lo.z()) - 1; k <= floor_cell(grid_hi.z()) + 1; ++k) {
@@ -626,7 +631,7 @@ TEST_CASE("spatial hash: an entry the caller's keep refuses is left out and its 
             CHECK(buckets.insert(bucket).second);  // one cell a bucket
             std::vector<std::uint32_t> want;
             for (const std::uint32_t* it = all.first; it != all.last; ++it)
-              if (accepts(*it, bucket)) want.push_back(*it);
+              if (accepts(*it, bucket)) want.push_back(*it), ++kept_of[*it];
             INFO("cell " << i << " " << j << " " << k);
             REQUIRE(std::vector<std::uint32_t>(got.first, got.last) == want);
             entries += want.size();
@@ -636,6 +641,7 @@ TEST_CASE("spatial hash: an entry the caller's keep refuses is left out and its 
       CHECK(buckets.size() == kept.grid_cells());
       CHECK(refused > 0);
       CHECK(outside > 0);
+      CHECK(*std::max_element(kept_of.begin(), kept_of.end()) > SpatialHash::kKeptBatch);
     }
   SpatialHash hashing(cell, 31, HashFunction::Mixed);
   hashing.begin_epoch();

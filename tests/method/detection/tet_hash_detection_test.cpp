@@ -111,10 +111,11 @@ void require_same_queries(const World& world, const CollisionPairs& pairs, TetHa
 // entered into each cell of its box holding a vertex of another walked body
 // (of any walked body, with self-collision), unless every walked body
 // collides with itself (then the cells are not told apart). `tets_only`:
-// the entries with only the first rule (every cell of each such tet's box).
-// Cells cut as the table cuts them (SpatialHash::cell_of).
+// the entries with only the first rule (every cell of each such tet's box);
+// `told_apart`: with both rules, whether or not every walked body collides
+// with itself. Cells cut as the table cuts them (SpatialHash::cell_of).
 struct ReachableEntries {
-  std::size_t tets_only = 0, cells_too = 0;
+  std::size_t tets_only = 0, told_apart = 0, cells_too = 0;
 };
 ReachableEntries reachable_entries(const World& world, const CollisionPairs& pairs, double cell_m) {
   const SpatialHash cuts(cell_m, 1, HashFunction::Mixed);
@@ -131,7 +132,8 @@ ReachableEntries reachable_entries(const World& world, const CollisionPairs& pai
   }
   ReachableEntries out;
   bool cells_told_apart = false;
-  for (std::size_t b = 0; b < n; ++b) cells_told_apart = cells_told_apart || (pairs.has_partner(b) && !pairs.enabled(b, b));
+  for (std::size_t b = 0; b < n; ++b)
+    cells_told_apart = cells_told_apart || (pairs.has_partner(b) && !pairs.enabled(b, b));
   for (std::size_t b = 0; b < n; ++b) {
     if (!pairs.has_partner(b)) continue;
     const bool self = pairs.enabled(b, b);
@@ -152,12 +154,12 @@ ReachableEntries reachable_entries(const World& world, const CollisionPairs& pai
           for (std::int64_t k = cuts.cell_of(lo.z()); k <= cuts.cell_of(hi.z()); ++k) {
             ++out.tets_only;
             const auto it = holders.find(Cell{i, j, k});
-            if (!cells_told_apart ||
-                (it != holders.end() && (self || it->second.size() > 1 || *it->second.begin() != b)))
-              ++out.cells_too;
+            if (it != holders.end() && (self || it->second.size() > 1 || *it->second.begin() != b))
+              ++out.told_apart;
           }
     }
   }
+  out.cells_too = cells_told_apart ? out.told_apart : out.tets_only;
   return out;
 }
 
@@ -589,8 +591,13 @@ TEST_CASE("a hash made for queries at its own positions leaves out the tets no q
   // somewhere (or the test checks nothing), and nothing may be
   // left out once refreshing is enabled (a refreshed table serves later
   // positions). A self-colliding body's tets, which its own vertices query,
-  // must all stay in: the folded pair's own queries check that.
-  bool some_skipped = false, some_cells_left_out = false, some_all_self = false;
+  // must all stay in: the folded pair's own queries check that, and so do
+  // the scenes again with every active body colliding with itself (then,
+  // where no passive body is walked, the cells are not told apart, which
+  // the folded pair's count must show). One detector hashed again after
+  // the bodies moved (its grid and tags made anew) must hold exactly the
+  // new positions' entries: a tag left from the last hash would add some.
+  bool some_skipped = false, some_cells_left_out = false, some_all_self = false, some_dense_again = false;
   for_each_scene_apart([&](World& world, const CollisionPairs& pairs, const DetectionSettings& settings) {
     TetHashDetector full(world, settings);
     const std::uint64_t full_work = full.hash_tets(world, pairs);
@@ -610,28 +617,45 @@ TEST_CASE("a hash made for queries at its own positions leaves out the tets no q
         CHECK(reached.body_box(b).hi == full.body_box(b).hi);
       }
     }
+    {
+      std::vector<std::vector<Vec3>> before;
+      for (const Body& b : world.bodies) before.push_back(b.x_m);
+      TetHashDetector again(world, settings);
+      again.hash_tets(world, pairs, nullptr, true);
+      move_bodies(world, settings.cell_size_m, 2.5, 0.3);
+      INFO("hashed again, moved 2.5 cells");
+      TetHashDetector moved_full(world, settings);
+      CHECK(again.hash_tets(world, pairs, nullptr, true) == moved_full.hash_tets(world, pairs));
+      // (Bodies moved far apart may need too large a grid: then the table
+      // hashes, and only whole tets are left out.)
+      const ReachableEntries moved = reachable_entries(world, pairs, settings.cell_size_m);
+      CHECK(again.hash().entry_count() == (again.hash().dense() ? moved.cells_too : moved.tets_only));
+      some_dense_again = some_dense_again || (again.hash().dense() && moved.cells_too < moved.tets_only);
+      require_same_queries(world, pairs, moved_full, again);
+      for (std::size_t b = 0; b < world.bodies.size(); ++b) world.bodies[b].x_m = before[b];
+    }
     TetHashDetector refreshing(world, settings);
     refreshing.enable_refresh();
     CHECK(refreshing.hash_tets(world, pairs, nullptr, true) == full_work);
     CHECK(refreshing.hash().entry_count() == full.hash().entry_count());
-    // Every active body colliding with itself too: each one's own vertices
-    // then query its tets, and the cells are no longer told apart.
-    bool any_self = false;
-    for (Body& b : world.bodies) any_self = std::exchange(b.self_collision, true) || any_self;
-    if (!any_self) return;
+    // Every body set to collide with itself (a passive one still does not:
+    // self_collision_active).
+    for (Body& b : world.bodies) b.self_collision = true;
     INFO("every body with self-collision");
     const CollisionPairs all_self(world);
     TetHashDetector full_self(world, settings), reached_self(world, settings);
     CHECK(reached_self.hash_tets(world, all_self, nullptr, true) == full_self.hash_tets(world, all_self));
     const ReachableEntries want_self = reachable_entries(world, all_self, settings.cell_size_m);
-    CHECK(want_self.cells_too == want_self.tets_only);
     CHECK(reached_self.hash().entry_count() == want_self.cells_too);
     require_same_queries(world, all_self, full_self, reached_self);
-    some_all_self = true;
+    // Not told apart, and telling them apart would have left some out.
+    some_all_self =
+        some_all_self || (want_self.cells_too == want_self.tets_only && want_self.told_apart < want_self.tets_only);
   });
   CHECK(some_skipped);
   CHECK(some_cells_left_out);
   CHECK(some_all_self);
+  CHECK(some_dense_again);
 }
 
 TEST_CASE("a dense grid in place of the hash answers and charges every query, and the hash, as the hashed table; "
@@ -665,10 +689,13 @@ TEST_CASE("a dense grid in place of the hash answers and charges every query, an
         REQUIRE(dense.hash().dense());
         // Skipping, the grid also leaves out a tet's cells that hold no
         // other body's vertex, which the hash cannot tell apart in a bucket.
-        if (skip)
-          CHECK(dense.hash().entry_count() <= hashed.hash().entry_count());
-        else
+        if (skip) {
+          const ReachableEntries want = reachable_entries(world, pairs, settings.cell_size_m);
+          CHECK(dense.hash().entry_count() == want.cells_too);
+          CHECK(hashed.hash().entry_count() == want.tets_only);
+        } else {
           CHECK(dense.hash().entry_count() == hashed.hash().entry_count());
+        }
         // At the hash's positions, then moved on (a cycle spanning steps
         // queries its table later: unless skipping, which promises not).
         require_same_queries(world, pairs, hashed, dense);
