@@ -274,25 +274,20 @@ bool TetHashDetector::tag_query_cells(const World& world, const CollisionPairs& 
     // self-collision) is in no cell of their tets' boxes, and no other
     // body's vertex shares its cell: untagged, its cell refuses what its
     // tag would (its own body's tets). So it is not tagged: bodies apart
-    // tag few cells. Compared on grid coordinates, exactly cell_of's
-    // decision (SpatialHash::grid_coordinate).
+    // tag few cells. Compared as cell indices (cell_of is monotone).
     const BoxUnion& reach = m_query_reach[o];
     const bool all = reach.poisoned();
-    double first[3], end[3];
+    std::int64_t first[3], last[3];
     for (int a = 0; a < 3; ++a) {
-      first[a] = static_cast<double>(m_hash.cell_of(reach.lo[a]));
-      end[a] = static_cast<double>(m_hash.cell_of(reach.hi[a])) + 1.0;
+      first[a] = m_hash.cell_of(reach.lo[a]);
+      last[a] = m_hash.cell_of(reach.hi[a]);
     }
     for (const Vec3& p : world.bodies[o].x_m) {
-      if (!all) {
-        bool near = true;
-        for (int a = 0; a < 3; ++a) {
-          const double g = m_hash.grid_coordinate(p[a]);
-          near = near && g >= first[a] && g < end[a];
-        }
-        if (!near) continue;
-      }
-      const std::size_t cell = m_hash.grid_cell(p);
+      const std::int64_t c[3] = {m_hash.cell_of(p.x()), m_hash.cell_of(p.y()), m_hash.cell_of(p.z())};
+      if (!all && (c[0] < first[0] || c[0] > last[0] || c[1] < first[1] || c[1] > last[1] || c[2] < first[2] ||
+                   c[2] > last[2]))
+        continue;
+      const std::size_t cell = m_hash.grid_cell(c[0], c[1], c[2]);
       if (cell == SpatialHash::kOutsideGrid) return false;
       std::uint32_t& tag = m_cell_tag[cell];
       if (tag == kNoVertex) m_tagged_cells.push_back(static_cast<std::uint32_t>(cell));
