@@ -31,8 +31,8 @@
 /// i (no hash, no modulo, no two cells in one bucket; neighbouring cells'
 /// buckets side by side). A point outside the range has an empty bucket.
 /// Every bucket then lists exactly the items of its cell (those a caller's
-/// `keep` accepts, insert_all_and_build()), in insertion order: the entries of the point's own bucket that pass a caller's box
-/// test are the hash's, in the hash's order (a box holding p covers p's
+/// `keep` accepts, insert_all_and_build()), in insertion order: the entries
+/// of the point's own bucket that pass a caller's box test are the hash's, in the hash's order (a box holding p covers p's
 /// cell, so it is in p's bucket either way; a colliding cell's items differ
 /// only by failing that test). What differs is only where a bucket lists
 /// items of other cells: a search over several buckets meets those in
@@ -175,8 +175,8 @@ class SpatialHash {
   /// pool's threads: box_of(i, lo, hi, item) gives box i, or returns false
   /// to skip it (or box_of(part, i, lo, hi, item), if it takes the calling
   /// thread's part, 0 .. threads - 1: for per-thread accumulators). Without
-  /// `keep`, the table is exactly the serial one: the same items in every bucket, in
-  /// insertion order (only where each bucket's range sits in the sorted
+  /// `keep`, the table is exactly the serial one: the same items in every
+  /// bucket, in insertion order (only where each bucket's range sits in the sorted
   /// array differs, which no query sees). Returns the cells inserted.
   /// Each thread takes a contiguous range of boxes and computes their cells'
   /// buckets into one list per owner (in order); an owner is a contiguous
@@ -328,9 +328,9 @@ class SpatialHash {
     // other box goes to check_box(), which decides as before. (A call a box
     // was 3 % of the dog pair's cycle in perf.)
     constexpr auto kMax = static_cast<std::int64_t>(kMaxCellsPerBox);
+    const auto u = [](std::int64_t x) { return static_cast<std::uint64_t>(x); };
     const bool common = ni >= 1 && nj >= 1 && nk >= 1 && ni <= kMax && nj <= kMax && nk <= kMax &&
-                        static_cast<std::uint64_t>(ni) * static_cast<std::uint64_t>(nj) * static_cast<std::uint64_t>(nk) <=
-                            kMaxCellsPerBox;
+                        u(ni) * u(nj) * u(nk) <= kMaxCellsPerBox;
     if (!common) check_box(ni, nj, nk);
     return r;
   }

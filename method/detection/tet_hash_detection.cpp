@@ -249,9 +249,12 @@ void TetHashDetector::reach_of_queries(const World& world, const CollisionPairs&
 
 bool TetHashDetector::tag_query_cells(const World& world, const CollisionPairs& pairs) {
   // Only where some walked body does not collide with itself: a
-  // self-colliding body's tets go into every cell holding any vertex,
-  // which left out too little to pay for the tags (finger_curl's tet hash
-  // took 0.108 ms a step with them, 0.087 without).
+  // self-colliding body's tets go into every cell holding any vertex, so
+  // where all bodies collide with themselves the tags could leave out only
+  // cells holding no vertex at all, and the tag pass is spent for little.
+  // (The evidence is weak: finger_curl's tet hash took 0.108 ms a step with
+  // tags and 0.087 without in one paired run, but 0.083-0.084 with and
+  // 0.083-0.112 without in three more.)
   bool pays = false;
   for (std::size_t o = 0; o < world.bodies.size(); ++o)
     pays = pays || (walked(world, pairs, o, false) && !pairs.enabled(o, o));

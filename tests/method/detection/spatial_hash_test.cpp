@@ -631,7 +631,10 @@ TEST_CASE("spatial hash: an entry the caller's keep refuses is left out and its 
             CHECK(buckets.insert(bucket).second);  // one cell a bucket
             std::vector<std::uint32_t> want;
             for (const std::uint32_t* it = all.first; it != all.last; ++it)
-              if (accepts(*it, bucket)) want.push_back(*it), ++kept_of[*it];
+              if (accepts(*it, bucket)) {
+                want.push_back(*it);
+                ++kept_of[*it];
+              }
             INFO("cell " << i << " " << j << " " << k);
             REQUIRE(std::vector<std::uint32_t>(got.first, got.last) == want);
             entries += want.size();
