@@ -145,6 +145,19 @@ class SpatialHash {
     return static_cast<std::size_t>((di * m_grid_n[1] + dj) * m_grid_n[2] + dk);
   }
   static constexpr std::size_t kOutsideGrid = std::numeric_limits<std::size_t>::max();
+  /// This epoch's dense grid: its first cell's indices and its cells along
+  /// each axis. Cell (first[0] + di, first[1] + dj, first[2] + dk) is bucket
+  /// (di * cells[1] + dj) * cells[2] + dk, what grid_cell() returns: for
+  /// callers that keep cells as offsets into the grid and walk a box's
+  /// cells from them. Each count is below 2^32 (the grid's cells are).
+  /// Meaningful only while dense().
+  struct GridShape {
+    std::int64_t first[3];
+    std::uint64_t cells[3];
+  };
+  GridShape grid_shape() const {
+    return {{m_grid.i0, m_grid.j0, m_grid.k0}, {m_grid_n[0], m_grid_n[1], m_grid_n[2]}};
+  }
   /// Inserts item into every cell its box [lo, hi] overlaps; returns the
   /// number of cells (each a unit of work).
   std::size_t insert_box(const Vec3& lo, const Vec3& hi, std::uint32_t item);

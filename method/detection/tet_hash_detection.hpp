@@ -112,17 +112,24 @@ class TetHashDetector {
   /// (a widened query could pass its grown box and be charged it: hence
   /// unwidened). Its cells are still charged (work units unchanged), its
   /// HashOverflow thrown as the insert would (the same cell count, checked),
-  /// its box stored and in its body's union. In a dense grid, a tet entered
-  /// goes only into the cells of its box where a vertex of another walked
-  /// body lies (of any walked body, if its own collides with itself), while
-  /// some walked body does not collide with itself: a query searches its
-  /// point's cell alone, and the tets of the point's own body it would skip
-  /// unread and uncharged; all its cells are charged too. Only the table is
-  /// smaller (memory_bytes() may be too). The paper's algorithm with a
-  /// pre-filter the design notes measured (skip tets outside the other
-  /// object's box) and its refinement to cells (on the dog pair 300,007
-  /// entries become 31,251; micro_peer_inside's BM_PeersPaired/0, ours
-  /// 6.5-7.1 ms to 4.3-4.5 ms, 6.0 once on a loaded host).
+  /// its box stored and in its body's union (but see below). In a dense
+  /// grid, a tet entered goes only into the cells of its box where a vertex
+  /// of another walked body lies (of any walked body, if its own collides
+  /// with itself), while some walked body does not collide with itself: a
+  /// query searches its point's cell alone, and the tets of the point's own
+  /// body it would skip unread and uncharged; all its cells are charged
+  /// too. Only the table is smaller (memory_bytes() may be too). A tet of a
+  /// body whose every vertex lies in a non-degenerate tet, which that rule
+  /// would enter into no cell, may be left out from its vertices' cells
+  /// before its box is made (cells_untagged_for(), asked where under a
+  /// quarter of the body's vertices lie in cells that take its tets): its
+  /// box is then not stored, and the body's union is the box around its
+  /// vertices (the same lo and hi). The
+  /// paper's algorithm with a pre-filter the design notes measured (skip
+  /// tets outside the other object's box) and its refinement to cells (on
+  /// the dog pair 300,007 entries become 31,251; micro_peer_inside's
+  /// BM_PeersPaired/0, ours 6.5-7.1 ms to 4.3-4.5 ms, 6.0 once on a loaded
+  /// host; BM_Ours/0 3.82-4.04 ms to 3.22-3.32 ms with boxes left unmade).
   std::uint64_t hash_tets(const World& world, const CollisionPairs& pairs, WorkerPool* pool = nullptr,
                           bool queries_at_these_positions = false);
   /// Stage 1 in pieces: begin_hash() empties the table; each hash_some_tets()
@@ -141,7 +148,7 @@ class TetHashDetector {
   /// range has at most kDenseCellsPerBucket cells a hash bucket and
   /// kDenseCellsPerTet a tet (spatial_hash.hpp; 12 bytes a cell, the
   /// buckets kept at their largest: at most 96 bytes a tet, and 32 more for
-  /// the tags of hash_tets() skipping): a query of the
+  /// the tags of hash_tets() skipping, and 12 a vertex for their cells): a query of the
   /// point's cell then meets the tets that pass its box test in the hash's
   /// order (the same answers and work, cheaper to build and read), but a
   /// search over several cells, or over the main table and an overflow with
@@ -291,6 +298,26 @@ class TetHashDetector {
   std::vector<std::uint32_t> m_cell_tag;
   std::vector<std::uint32_t> m_tagged_cells;  // the cells the last tagging tagged
   std::vector<std::uint32_t> m_own_tag;
+  // Per body, its vertices' first index in m_vertex_cell (one more entry,
+  // the total); per vertex of a walked body, after tag_query_cells(), its
+  // cell as offsets into the tagged grid (m_tag_grid).
+  struct GridOffset {
+    std::uint32_t i, j, k;
+  };
+  std::vector<std::uint32_t> m_body_vertex_offset;
+  std::vector<GridOffset> m_vertex_cell;
+  // Per walked body, after tag_query_cells(): the cells of its
+  // m_query_reach, as offsets (the whole grid with self-collision).
+  struct GridOffsetRange {
+    GridOffset lo, hi;
+  };
+  std::vector<GridOffsetRange> m_reach_cells;
+  std::vector<char> m_ask_untagged;  // per body: hash_tets() asks cells_untagged_for() first
+  SpatialHash::GridShape m_tag_grid{};
+  // Per body: every vertex lies in one of its non-degenerate tets, so the
+  // union of its tets' boxes is the box around its vertices, exactly where
+  // the coordinates are finite (min and max round nothing).
+  std::vector<char> m_vertices_in_tets;
   static constexpr std::uint32_t kNoVertex = UINT32_MAX;
   static constexpr std::uint32_t kSeveralBodies = UINT32_MAX - 1;
   static constexpr std::uint32_t kNeverTag = UINT32_MAX - 2;  // no cell has this tag
@@ -299,6 +326,13 @@ class TetHashDetector {
   /// with itself), or if a vertex lies outside the grid, which the grid's
   /// range rules out; the tags are not used then.
   bool tag_query_cells(const World& world, const CollisionPairs& pairs);
+  /// With the tags in use, the cells of slot `id`'s box, from its vertices'
+  /// m_vertex_cell (cell_of is monotone, so a box's first and last cell
+  /// along an axis are its vertices' least and greatest): their number
+  /// where no tag of them takes a tet of `body`, so the tet would enter no
+  /// cell; 0 where one would, or where the box has more than
+  /// kMaxCellsPerBox cells (the insert then decides, and throws).
+  std::size_t cells_untagged_for(std::uint32_t id, std::size_t body) const;
   /// Makes m_partner_boxes from m_body_boxes after a complete hash or refresh.
   void finish_body_boxes(const World& world, const CollisionPairs& pairs);
   QueryScratch m_scratch;                             // the single-threaded queries'

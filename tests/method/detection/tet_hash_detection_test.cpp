@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <limits>
 #include <map>
+#include <memory>
 #include <optional>
 #include <set>
 #include <stdexcept>
@@ -70,6 +71,20 @@ TestBox box_at(const std::vector<Vec3>& x, const Tet& t) {
   TestBox box{x[t[0]], x[t[0]]};
   for (int k = 1; k < 4; ++k) box.lo = box.lo.cwiseMin(x[t[k]]), box.hi = box.hi.cwiseMax(x[t[k]]);
   return box;
+}
+
+// The union of body b's non-degenerate tets' boxes at its positions (empty
+// for a body without a partner): what the detector's body_box(b) must be.
+BoxUnion tet_box_union(const World& world, const CollisionPairs& pairs, std::size_t b) {
+  BoxUnion u;
+  if (!pairs.has_partner(b)) return u;
+  const Body& body = world.bodies[b];
+  for (std::size_t t = 0; t < body.mesh->tet_count(); ++t) {
+    if (body.mesh->is_degenerate[t]) continue;
+    const TestBox box = box_at(body.x_m, body.mesh->tets[t]);
+    u.add_box(box.lo, box.hi);
+  }
+  return u;
 }
 
 // Every test scene at three separations of its movable bodies (0, 0.45 and
@@ -531,22 +546,10 @@ TEST_CASE("every hashing and refresh path keeps each body's box union exactly th
   // after the piecewise hash (pieces of 7 tets, across bodies), the
   // whole-stage hash on 0 to 3 threads, and either refresh after motion
   // (which leaves the fixed passive bodies' unions from the hash).
-  const auto expected_union = [](const World& world, const CollisionPairs& pairs, std::size_t b) {
-    BoxUnion u;
-    if (!pairs.has_partner(b)) return u;
-    const Body& body = world.bodies[b];
-    for (std::size_t t = 0; t < body.mesh->tet_count(); ++t) {
-      if (body.mesh->is_degenerate[t]) continue;
-      const Tet& tet = body.mesh->tets[t];
-      const TestBox box = box_at(body.x_m, tet);
-      u.add_box(box.lo, box.hi);
-    }
-    return u;
-  };
   const auto check_unions = [&](const World& world, const CollisionPairs& pairs, const TetHashDetector& detector) {
     for (std::size_t b = 0; b < world.bodies.size(); ++b) {
       INFO("body " << b);
-      const BoxUnion want = expected_union(world, pairs, b);
+      const BoxUnion want = tet_box_union(world, pairs, b);
       CHECK(detector.body_box(b).lo == want.lo);
       CHECK(detector.body_box(b).hi == want.hi);
       CHECK_FALSE(detector.body_box(b).poisoned());
@@ -613,8 +616,13 @@ TEST_CASE("a hash made for queries at its own positions leaves out the tets no q
       some_cells_left_out = some_cells_left_out || want.cells_too < want.tets_only;
       require_same_queries(world, pairs, full, reached);
       for (std::size_t b = 0; b < world.bodies.size(); ++b) {
-        CHECK(reached.body_box(b).lo == full.body_box(b).lo);  // every box stored, skipped or not
-        CHECK(reached.body_box(b).hi == full.body_box(b).hi);
+        // Its tets' boxes, though most of them were never made (the union
+        // taken from the vertices, where every vertex is in a tet).
+        const BoxUnion want_union = tet_box_union(world, pairs, b);
+        CHECK(reached.body_box(b).lo == want_union.lo);
+        CHECK(reached.body_box(b).hi == want_union.hi);
+        CHECK(full.body_box(b).lo == want_union.lo);
+        CHECK(full.body_box(b).hi == want_union.hi);
       }
     }
     {
@@ -656,6 +664,66 @@ TEST_CASE("a hash made for queries at its own positions leaves out the tets no q
   CHECK(some_cells_left_out);
   CHECK(some_all_self);
   CHECK(some_dense_again);
+}
+
+TEST_CASE("a body with vertices in no tet: its union is its tets' boxes', not its vertices', and the table and every "
+          "query are as without the shortcut",
+          "[detection][threads]") {
+  // Where every vertex of a body lies in one of its non-degenerate tets,
+  // hash_tets() takes the body's union from its vertices and leaves out a
+  // tet no tag takes before making its box. A body with an isolated vertex,
+  // and four more only in a degenerate tet, all 1.5 cells beyond its box,
+  // must not: its union is still its tets' boxes' alone (a query point
+  // between the two is rejected by the union, so a union grown to the
+  // vertices would change no answer here; the union itself is checked).
+  // The table must hold exactly reachable_entries()'s count (the stray
+  // vertices tag their cells like any other), and every query find and be
+  // charged what the full table gives, on 0 to 2 threads.
+  bool some_body_grown = false;
+  for_each_scene_apart([&](World& world, const CollisionPairs& pairs, const DetectionSettings& settings) {
+    std::size_t b = 0;
+    while (b < world.bodies.size() && !pairs.has_partner(b)) ++b;
+    REQUIRE(b < world.bodies.size());
+    Body& body = world.bodies[b];
+    TetMesh mesh = *body.mesh;
+    BoxUnion vertices;
+    for (const Vec3& p : body.x_m) vertices.add_box(p, p);
+    const Vec3 beyond = vertices.hi + Vec3::Constant(1.5 * settings.cell_size_m);
+    const auto add_vertex = [&](const Vec3& p) {
+      mesh.positions_m.push_back(p);
+      body.x_m.push_back(p);
+      return static_cast<std::int32_t>(body.x_m.size() - 1);
+    };
+    add_vertex(beyond);  // isolated
+    const double h = 0.3 * settings.cell_size_m;
+    const Tet flat{add_vertex(beyond + Vec3(h, 0, 0)), add_vertex(beyond + Vec3(0, h, 0)),
+                   add_vertex(beyond + Vec3(h, h, 0)), add_vertex(beyond + Vec3(2 * h, h, 0))};
+    mesh.tets.push_back(flat);  // all four in the plane z = beyond.z
+    mesh.is_degenerate.push_back(1);
+    body.mesh = std::make_shared<const TetMesh>(std::move(mesh));
+    const BoxUnion want_union = tet_box_union(world, pairs, b);
+    some_body_grown = some_body_grown || (want_union.hi.array() < beyond.array()).all();
+    TetHashDetector full(world, settings);
+    const std::uint64_t full_work = full.hash_tets(world, pairs);
+    const ReachableEntries want = reachable_entries(world, pairs, settings.cell_size_m);
+    for (const int threads : {0, 1, 2}) {
+      INFO(threads << " threads");
+      WorkerPool pool(std::max(threads, 1));
+      TetHashDetector reached(world, settings);
+      CHECK(reached.hash_tets(world, pairs, threads > 0 ? &pool : nullptr, true) == full_work);
+      REQUIRE(reached.hash().dense());
+      CHECK(reached.hash().entry_count() == want.cells_too);
+      require_same_queries(world, pairs, full, reached);
+      for (const TetHashDetector* detector : {&full, &reached})
+        for (std::size_t o = 0; o < world.bodies.size(); ++o) {
+          INFO("body " << o);
+          const BoxUnion union_o = tet_box_union(world, pairs, o);
+          CHECK(detector->body_box(o).lo == union_o.lo);
+          CHECK(detector->body_box(o).hi == union_o.hi);
+        }
+    }
+  });
+  CHECK(some_body_grown);
 }
 
 TEST_CASE("a dense grid in place of the hash answers and charges every query, and the hash, as the hashed table; "
