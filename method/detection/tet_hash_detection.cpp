@@ -199,9 +199,11 @@ std::uint64_t TetHashDetector::hash_tets(const World& world, const CollisionPair
   // work and table contents, only a bucket's order within a body differs,
   // which no query sees).
   PartUnions part_boxes(threads.threads(), world.bodies.size());
-  // Cells charged for tets not entered, a thread's count a cache line apart.
+  // Cells charged for tets not entered, and the tets left out before their
+  // boxes were made, a thread's counts a cache line apart.
   struct alignas(64) SkippedCells {
     std::size_t cells = 0;
+    std::size_t unmade = 0;
   };
   std::vector<SkippedCells> skipped(static_cast<std::size_t>(threads.threads()));
   // Within the tets entered, their cells no query point lies in (dense
@@ -211,9 +213,10 @@ std::uint64_t TetHashDetector::hash_tets(const World& world, const CollisionPair
   // is in a non-degenerate tet and the grid is dense, so every coordinate
   // finite: the same lo and hi (min and max are exact), and no tet then
   // updates a union. Only `probe` may differ, where a sum of huge
-  // coordinates overflows to infinities of both signs: the tets' union is
-  // then poisoned and rejects no query, this one may; but a point it
-  // rejects lies outside every tet box it covers, so the query finds
+  // coordinates overflows to infinities of both signs, so either union may
+  // be poisoned where the other is not, and reject no query where the
+  // other rejects some; but a point either rejects lies outside every tet
+  // box the union covers, so its query (unwidened, on a dense grid) finds
   // nothing and is charged its one unit either way (BoxUnion's contract).
   std::vector<char> union_of_vertices(world.bodies.size(), 0);
   for (std::size_t b = 0; b < world.bodies.size(); ++b)
@@ -223,16 +226,18 @@ std::uint64_t TetHashDetector::hash_tets(const World& world, const CollisionPair
     const Body& body = world.bodies[b];
     if (!walked(world, pairs, b, false) || m_slot_degenerate[id]) return false;
     item = static_cast<std::uint32_t>(id);
-    // A tet that no cell of its box would take is left out from its
-    // vertices' cells, before its box is made (its body's union comes from
-    // the vertices, and no query reads the box of a tet not entered). On
+    // A tet that no cell of its box would take is recognised from its
+    // vertices' cells and left out before its box is made (its body's union
+    // comes from the vertices, and no query reads the box of a tet not
+    // entered). On
     // the dog pair that is 88 % of the tets; its tet hash took 2.06-2.18 ms
     // a step against 2.70-2.78 ms without (micro_collision_cycle
     // BM_DogPair/0/100/1, ms_hash_tets, alternated rounds).
     if (tagged && union_of_vertices[b] && m_ask_untagged[b]) {
-      const std::size_t untagged = cells_untagged_for(item, b);
-      if (untagged > 0) {
-        skipped[static_cast<std::size_t>(part)].cells += untagged;
+      const std::size_t untaken = cells_if_none_takes(item, b);
+      if (untaken > 0) {
+        skipped[static_cast<std::size_t>(part)].cells += untaken;
+        ++skipped[static_cast<std::size_t>(part)].unmade;
         return false;
       }
     }
@@ -255,15 +260,15 @@ std::uint64_t TetHashDetector::hash_tets(const World& world, const CollisionPair
     cells = m_hash.insert_all_and_build(m_boxes.size(), box_of, threads, SpatialHash::kBucketsPerOwner, nullptr,
                                         [=](std::uint32_t id) {
                                           const std::uint32_t mine = own[owner[id]];
-                                          return [tag, mine](std::uint32_t cell) {
-                                            const std::uint32_t t = tag[cell];
-                                            return t != kNoVertex && t != mine;
-                                          };
+                                          return [tag, mine](std::uint32_t cell) { return takes(tag[cell], mine); };
                                         });
   } else {
     cells = m_hash.insert_all_and_build(m_boxes.size(), box_of, threads);
   }
-  for (const SkippedCells& s : skipped) cells += s.cells;
+  for (const SkippedCells& s : skipped) {
+    cells += s.cells;
+    m_tets_unmade += s.unmade;
+  }
   for (std::size_t b = 0; b < world.bodies.size(); ++b)
     m_body_boxes[b] = union_of_vertices[b] ? vertices[b] : part_boxes.merged(b);
   finish_body_boxes(world, pairs);
@@ -271,7 +276,7 @@ std::uint64_t TetHashDetector::hash_tets(const World& world, const CollisionPair
   return work::kCellInsert * cells;
 }
 
-std::size_t TetHashDetector::cells_untagged_for(std::uint32_t id, std::size_t body) const {
+std::size_t TetHashDetector::cells_if_none_takes(std::uint32_t id, std::size_t body) const {
   const Tet& tet = m_slot_tets[id];
   const GridOffset* const cell = m_vertex_cell.data() + m_body_vertex_offset[body];
   const GridOffset &a = cell[tet[0]], &b = cell[tet[1]], &c = cell[tet[2]], &d = cell[tet[3]];
@@ -287,9 +292,10 @@ std::size_t TetHashDetector::cells_untagged_for(std::uint32_t id, std::size_t bo
   // Within the grid, so at most its cells (below 2^32): no overflow.
   const std::uint64_t cells = (i1 - i0 + 1) * (j1 - j0 + 1) * (k1 - k0 + 1);
   if (cells > kMaxCellsPerBox) return 0;
-  // Apart from the cells of the other bodies' vertices, it meets no cell
-  // their vertices tagged (nor, without self-collision, one its own took
-  // for it: tag_query_cells() tags no vertex outside them): no tag read.
+  // A cell that takes the tet holds a vertex of another walked body (or,
+  // with self-collision, any vertex: then the reach is the whole grid), so
+  // lies in the cells of m_query_reach: a range apart from them is
+  // decided without reading a tag.
   const GridOffsetRange& reach = m_reach_cells[body];
   if (i1 < reach.lo.i || i0 > reach.hi.i || j1 < reach.lo.j || j0 > reach.hi.j || k1 < reach.lo.k ||
       k0 > reach.hi.k)
@@ -297,23 +303,25 @@ std::size_t TetHashDetector::cells_untagged_for(std::uint32_t id, std::size_t bo
   const std::uint32_t* const tag = m_cell_tag.data();
   const std::uint32_t mine = m_own_tag[body];
   const std::uint64_t nj = m_tag_grid.cells[1], nk = m_tag_grid.cells[2];
-  const auto takes = [mine](std::uint32_t t) { return (t != kNoVertex) & (t != mine); };
+  const auto takes_tet = [mine](std::uint32_t t) { return takes(t, mine); };
   const auto row = [&](std::uint64_t i, std::uint64_t j) { return tag + (i * nj + j) * nk; };
   bool taken = false;
   if (i1 - i0 <= 1 && j1 - j0 <= 1 && k1 - k0 <= 1) {
-    // At most two cells along each axis: the eight corners are every cell
-    // (a cell read twice where a side has one), read without a loop whose
-    // short, varying trip counts were mispredicted.
+    // At most two cells along each axis (70 % of the dog pair's tets): the
+    // eight corners are every cell (a cell read twice where a side has
+    // one), read without loops. BM_Ours/0 took 3.87-4.00 ms in 8 runs with
+    // the loops alone, 3.61-3.74 ms in 6 of 8 so (the other two 4.6-4.8 ms,
+    // on a loaded host), before the reach test above was added.
     const std::uint32_t *const a0 = row(i0, j0), *const a1 = row(i0, j1), *const b0 = row(i1, j0),
                                *const b1 = row(i1, j1);
-    taken = takes(a0[k0]) | takes(a0[k1]) | takes(a1[k0]) | takes(a1[k1]) | takes(b0[k0]) | takes(b0[k1]) |
-            takes(b1[k0]) | takes(b1[k1]);
+    taken = takes_tet(a0[k0]) | takes_tet(a0[k1]) | takes_tet(a1[k0]) | takes_tet(a1[k1]) | takes_tet(b0[k0]) |
+            takes_tet(b0[k1]) | takes_tet(b1[k0]) | takes_tet(b1[k1]);
   } else {
     // Every cell read, no early exit: most tets meet no tag.
     for (std::uint64_t i = i0; i <= i1; ++i)
       for (std::uint64_t j = j0; j <= j1; ++j) {
         const std::uint32_t* const r = row(i, j);
-        for (std::uint64_t k = k0; k <= k1; ++k) taken |= takes(r[k]);
+        for (std::uint64_t k = k0; k <= k1; ++k) taken |= takes_tet(r[k]);
       }
   }
   return taken ? 0 : static_cast<std::size_t>(cells);
@@ -402,7 +410,7 @@ bool TetHashDetector::tag_query_cells(const World& world, const CollisionPairs& 
       tag = tag == kNoVertex || tag == body ? body : kSeveralBodies;
     }
   }
-  // Whether cells_untagged_for() is worth asking for a body's tets: where
+  // Whether cells_if_none_takes() is worth asking for a body's tets: where
   // a quarter or more of its vertices lie in cells that take its tets,
   // most of its tets are taken too and the check is spent for nothing.
   // (The share of tets taken against the share of vertices in taking
@@ -421,7 +429,7 @@ bool TetHashDetector::tag_query_cells(const World& world, const CollisionPairs& 
     for (std::size_t v = 0; v < n; ++v) {
       const GridOffset& c = offsets[v];
       const std::uint32_t tag = m_cell_tag[(c.i * m_tag_grid.cells[1] + c.j) * m_tag_grid.cells[2] + c.k];
-      taking += (tag != kNoVertex) & (tag != m_own_tag[o]);
+      taking += takes(tag, m_own_tag[o]);
     }
     m_ask_untagged[o] = 4 * taking < n;
   }
@@ -430,6 +438,7 @@ bool TetHashDetector::tag_query_cells(const World& world, const CollisionPairs& 
 
 void TetHashDetector::begin_hash() {
   m_partner_boxes_ready = false;
+  m_tets_unmade = 0;
   // Every union empty until its body's tets are stored again: a body the
   // walk then skips (no partner) keeps an empty one.
   for (BoxUnion& u : m_body_boxes) u = BoxUnion{};

@@ -27,7 +27,8 @@
 ///      is in the main table's bucket (cells unchanged) or the overflow's;
 ///   2. query_point(): first, without self-collision, the vertex against
 ///      the box around every other hashed body's tets (the union of their
-///      stored boxes, kept by every hashing and refresh path), grown by the
+///      stored boxes, kept by every hashing and refresh path, or on a dense
+///      hash the box around their vertices, the same lo and hi), grown by the
 ///      margin of a widened query: outside it, every tet of every bucket
 ///      searched would fail its (grown) box test, so the query ends there
 ///      with the same answer (none) and work (a unit a cell searched, in
@@ -118,18 +119,20 @@ class TetHashDetector {
   /// with itself), while some walked body does not collide with itself: a
   /// query searches its point's cell alone, and the tets of the point's own
   /// body it would skip unread and uncharged; all its cells are charged
-  /// too. Only the table is smaller (memory_bytes() may be too). A tet of a
-  /// body whose every vertex lies in a non-degenerate tet, which that rule
-  /// would enter into no cell, may be left out from its vertices' cells
-  /// before its box is made (cells_untagged_for(), asked where under a
-  /// quarter of the body's vertices lie in cells that take its tets): its
-  /// box is then not stored, and the body's union is the box around its
-  /// vertices (the same lo and hi). The
+  /// too. Only the table is smaller (memory_bytes() may be too). A tet that
+  /// rule would enter into no cell may be recognised from its vertices'
+  /// cells and left out before its box is made (cells_if_none_takes(),
+  /// asked for a body whose every vertex lies in a non-degenerate tet and
+  /// under a quarter of whose vertices lie in cells that take its tets):
+  /// its box is then not stored (tets_unmade() counts them). On any dense
+  /// grid, a body whose every vertex lies in a non-degenerate tet gets the
+  /// box around its vertices as its union (the same lo and hi). The
   /// paper's algorithm with a pre-filter the design notes measured (skip
   /// tets outside the other object's box) and its refinement to cells (on
   /// the dog pair 300,007 entries become 31,251; micro_peer_inside's
   /// BM_PeersPaired/0, ours 6.5-7.1 ms to 4.3-4.5 ms, 6.0 once on a loaded
-  /// host; BM_Ours/0 3.82-4.04 ms to 3.22-3.32 ms with boxes left unmade).
+  /// host). Boxes left unmade: BM_Ours/0 3.82-4.04 ms to 3.22-3.32 ms (8
+  /// alternated runs of each, a temporary switch, not committed).
   std::uint64_t hash_tets(const World& world, const CollisionPairs& pairs, WorkerPool* pool = nullptr,
                           bool queries_at_these_positions = false);
   /// Stage 1 in pieces: begin_hash() empties the table; each hash_some_tets()
@@ -148,8 +151,8 @@ class TetHashDetector {
   /// range has at most kDenseCellsPerBucket cells a hash bucket and
   /// kDenseCellsPerTet a tet (spatial_hash.hpp; 12 bytes a cell, the
   /// buckets kept at their largest: at most 96 bytes a tet, and 32 more for
-  /// the tags of hash_tets() skipping, and 12 a vertex for their cells): a query of the
-  /// point's cell then meets the tets that pass its box test in the hash's
+  /// the tags of hash_tets() skipping, 12 a vertex for their cells): a
+  /// query of the point's cell then meets the tets that pass its box test in the hash's
   /// order (the same answers and work, cheaper to build and read), but a
   /// search over several cells, or over the main table and an overflow with
   /// one best-so-far, would meet them in another order than the hash and
@@ -177,6 +180,9 @@ class TetHashDetector {
   std::uint64_t refresh_tets(const World& world, const CollisionPairs& pairs, WorkerPool* pool = nullptr);
   /// Tets in the overflow of the last refresh (0 without one).
   std::size_t overflow_tets() const { return m_overflow_tets; }
+  /// Tets the last hash_tets() left out before making their boxes (see
+  /// there; 0 from begin_hash() on). For tests and benchmarks.
+  std::size_t tets_unmade() const { return m_tets_unmade; }
   /// Tets of every body (the global id range), hashed or not.
   std::size_t tet_count() const { return m_boxes.size(); }
   /// Stage 2 for one vertex; adds its work units to `work`. `margin_m` > 0
@@ -206,8 +212,10 @@ class TetHashDetector {
                                      QueryScratch& scratch) const;
 
   const SpatialHash& hash() const { return m_hash; }
-  /// The union of body b's stored tet boxes (its non-degenerate tets, each
-  /// as last hashed or refreshed; empty for a body the hash does not walk),
+  /// The union of body b's tet boxes (its non-degenerate tets, each as last
+  /// hashed or refreshed; empty for a body the hash does not walk): on a
+  /// dense hash_tets() where every vertex of b is in such a tet, the box
+  /// around b's vertices, which has the same lo and hi (hash_tets()),
   /// from which the query's first test is made. Valid after a complete hash
   /// or refresh.
   const BoxUnion& body_box(std::size_t b) const { return m_body_boxes[b]; }
@@ -273,8 +281,8 @@ class TetHashDetector {
     Vec3 lo, hi;
   };
   std::vector<TetBox> m_boxes;
-  // Per body, the union of its tets' stored boxes, kept by every path that
-  // stores boxes; per body, the union over the other bodies the hash walks
+  // Per body, the union of its tets' boxes, kept by every path that stores
+  // boxes (or its vertices' box, where hash_tets() says so); per body, the union over the other bodies the hash walks
   // (a superset of its enabled partners'), valid once a hash or refresh has
   // completed.
   std::vector<BoxUnion> m_body_boxes;
@@ -312,7 +320,7 @@ class TetHashDetector {
     GridOffset lo, hi;
   };
   std::vector<GridOffsetRange> m_reach_cells;
-  std::vector<char> m_ask_untagged;  // per body: hash_tets() asks cells_untagged_for() first
+  std::vector<char> m_ask_untagged;  // per body: hash_tets() asks cells_if_none_takes() first
   SpatialHash::GridShape m_tag_grid{};
   // Per body: every vertex lies in one of its non-degenerate tets, so the
   // union of its tets' boxes is the box around its vertices, exactly where
@@ -321,6 +329,10 @@ class TetHashDetector {
   static constexpr std::uint32_t kNoVertex = UINT32_MAX;
   static constexpr std::uint32_t kSeveralBodies = UINT32_MAX - 1;
   static constexpr std::uint32_t kNeverTag = UINT32_MAX - 2;  // no cell has this tag
+  /// Whether a cell tagged `tag` takes a tet of a body whose own tag is
+  /// `own` (m_own_tag): a vertex lies in it, and not only the body's own.
+  static bool takes(std::uint32_t tag, std::uint32_t own) { return (tag != kNoVertex) & (tag != own); }
+  std::size_t m_tets_unmade = 0;
   /// Fills m_cell_tag and m_own_tag from the walked bodies' vertices;
   /// returns false where tags would not pay (every walked body collides
   /// with itself), or if a vertex lies outside the grid, which the grid's
@@ -332,7 +344,7 @@ class TetHashDetector {
   /// where no tag of them takes a tet of `body`, so the tet would enter no
   /// cell; 0 where one would, or where the box has more than
   /// kMaxCellsPerBox cells (the insert then decides, and throws).
-  std::size_t cells_untagged_for(std::uint32_t id, std::size_t body) const;
+  std::size_t cells_if_none_takes(std::uint32_t id, std::size_t body) const;
   /// Makes m_partner_boxes from m_body_boxes after a complete hash or refresh.
   void finish_body_boxes(const World& world, const CollisionPairs& pairs);
   QueryScratch m_scratch;                             // the single-threaded queries'

@@ -601,6 +601,7 @@ TEST_CASE("a hash made for queries at its own positions leaves out the tets no q
   // the bodies moved (its grid and tags made anew) must hold exactly the
   // new positions' entries: a tag left from the last hash would add some.
   bool some_skipped = false, some_cells_left_out = false, some_all_self = false, some_dense_again = false;
+  bool some_unmade = false;
   for_each_scene_apart([&](World& world, const CollisionPairs& pairs, const DetectionSettings& settings) {
     TetHashDetector full(world, settings);
     const std::uint64_t full_work = full.hash_tets(world, pairs);
@@ -614,6 +615,10 @@ TEST_CASE("a hash made for queries at its own positions leaves out the tets no q
       CHECK(reached.hash().entry_count() == want.cells_too);
       some_skipped = some_skipped || want.tets_only < full.hash().entry_count();
       some_cells_left_out = some_cells_left_out || want.cells_too < want.tets_only;
+      // Some tets left out before their boxes were made (the shortcut the
+      // checks here and below must cover), and none by the full table.
+      some_unmade = some_unmade || reached.tets_unmade() > 0;
+      CHECK(full.tets_unmade() == 0);
       require_same_queries(world, pairs, full, reached);
       for (std::size_t b = 0; b < world.bodies.size(); ++b) {
         // Its tets' boxes, though most of them were never made (the union
@@ -664,6 +669,7 @@ TEST_CASE("a hash made for queries at its own positions leaves out the tets no q
   CHECK(some_cells_left_out);
   CHECK(some_all_self);
   CHECK(some_dense_again);
+  CHECK(some_unmade);
 }
 
 TEST_CASE("a body with vertices in no tet: its union is its tets' boxes', not its vertices', and the table and every "
