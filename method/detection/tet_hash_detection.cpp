@@ -209,6 +209,7 @@ std::uint64_t TetHashDetector::hash_tets(const World& world, const CollisionPair
   // Within the tets entered, their cells no query point lies in (dense
   // grid only: its cells are its buckets, so a tag is exact).
   const bool tagged = skip && m_hash.dense() && tag_query_cells(world, pairs);
+  m_told_apart = tagged;
   // A body's union of tet boxes taken from its vertices' where every vertex
   // is in a non-degenerate tet and the grid is dense, so every coordinate
   // finite: the same lo and hi (min and max are exact), and no tet then
@@ -421,6 +422,7 @@ bool TetHashDetector::tag_query_cells(const World& world, const CollisionPairs& 
   // the check; with this rule 0.76-0.78: micro_collision_cycle
   // BM_Plates20/0/1, ms_hash_tets, alternated rounds.)
   m_ask_untagged.assign(world.bodies.size(), 0);
+  bool some_asked = false;
   for (std::size_t o = 0; o < world.bodies.size(); ++o) {
     if (!walked(world, pairs, o, false)) continue;
     const GridOffset* const offsets = m_vertex_cell.data() + m_body_vertex_offset[o];
@@ -432,13 +434,23 @@ bool TetHashDetector::tag_query_cells(const World& world, const CollisionPairs& 
       taking += takes(tag, m_own_tag[o]);
     }
     m_ask_untagged[o] = 4 * taking < n;
+    some_asked = some_asked || m_ask_untagged[o];
   }
-  return true;
+  // And the tags themselves only where some body is asked: where every
+  // walked body has a quarter or more of its vertices in taking cells, the
+  // tags leave few entries out and their checks cost more than the smaller
+  // table saves. plates20 (BM_ThreadsPaired/1/0, a temporary switch, two
+  // alternated rounds; a third without tags ran on a loaded host):
+  // ms_hash_tets 0.74-0.81 ms on one thread and 0.89-0.92 ms on two with
+  // the tags, 0.67-0.73 and 0.74-0.75 without; ms_query_points the same
+  // (1.86-1.93 and 1.25-1.27 ms).
+  return some_asked;
 }
 
 void TetHashDetector::begin_hash() {
   m_partner_boxes_ready = false;
   m_tets_unmade = 0;
+  m_told_apart = false;
   // Every union empty until its body's tets are stored again: a body the
   // walk then skips (no partner) keeps an empty one.
   for (BoxUnion& u : m_body_boxes) u = BoxUnion{};

@@ -116,10 +116,12 @@ class TetHashDetector {
   /// its box stored and in its body's union (but see below). In a dense
   /// grid, a tet entered goes only into the cells of its box where a vertex
   /// of another walked body lies (of any walked body, if its own collides
-  /// with itself), while some walked body does not collide with itself: a
-  /// query searches its point's cell alone, and the tets of the point's own
-  /// body it would skip unread and uncharged; all its cells are charged
-  /// too. Only the table is smaller (memory_bytes() may be too). A tet that
+  /// with itself), where some walked body has under a quarter of its
+  /// vertices in cells that would take its tets (so never where every
+  /// walked body collides with itself; cells_told_apart()): a query
+  /// searches its point's cell alone, and the tets of the point's own body
+  /// it would skip unread and uncharged; all its cells are charged too.
+  /// Only the table is smaller (memory_bytes() may be too). A tet that
   /// rule would enter into no cell may be recognised from its vertices'
   /// cells and left out before its box is made (cells_if_none_takes(),
   /// asked for a body whose every vertex lies in a non-degenerate tet and
@@ -183,6 +185,9 @@ class TetHashDetector {
   /// Tets the last hash_tets() left out before making their boxes (see
   /// there; 0 from begin_hash() on). For tests and benchmarks.
   std::size_t tets_unmade() const { return m_tets_unmade; }
+  /// Whether the last hash_tets() entered its tets only into the cells
+  /// that take them (see there; false from begin_hash() on).
+  bool cells_told_apart() const { return m_told_apart; }
   /// Tets of every body (the global id range), hashed or not.
   std::size_t tet_count() const { return m_boxes.size(); }
   /// Stage 2 for one vertex; adds its work units to `work`. `margin_m` > 0
@@ -333,9 +338,11 @@ class TetHashDetector {
   /// `own` (m_own_tag): a vertex lies in it, and not only the body's own.
   static bool takes(std::uint32_t tag, std::uint32_t own) { return (tag != kNoVertex) & (tag != own); }
   std::size_t m_tets_unmade = 0;
+  bool m_told_apart = false;
   /// Fills m_cell_tag and m_own_tag from the walked bodies' vertices;
   /// returns false where tags would not pay (every walked body collides
-  /// with itself), or if a vertex lies outside the grid, which the grid's
+  /// with itself, or has a quarter or more of its vertices in cells that
+  /// take its tets), or if a vertex lies outside the grid, which the grid's
   /// range rules out; the tags are not used then.
   bool tag_query_cells(const World& world, const CollisionPairs& pairs);
   /// With the tags in use, the cells of slot `id`'s box, from its vertices'

@@ -124,13 +124,15 @@ void require_same_queries(const World& world, const CollisionPairs& pairs, TetHa
 // body b whose box is not strictly apart from the box around the other
 // walked bodies' vertices (never apart when b collides with itself) is
 // entered into each cell of its box holding a vertex of another walked body
-// (of any walked body, with self-collision), unless every walked body
-// collides with itself (then the cells are not told apart). `tets_only`:
-// the entries with only the first rule (every cell of each such tet's box);
-// `told_apart`: with both rules, whether or not every walked body collides
-// with itself. Cells cut as the table cuts them (SpatialHash::cell_of).
+// (of any walked body, with self-collision), where some walked body has
+// under a quarter of its vertices in such cells (so not where every walked
+// body collides with itself; otherwise the cells are not told apart).
+// `tets_only`: the entries with only the first rule (every cell of each
+// such tet's box); `told_apart`: with both rules, whether or not the cells
+// are told apart. Cells cut as the table cuts them (SpatialHash::cell_of).
 struct ReachableEntries {
   std::size_t tets_only = 0, told_apart = 0, cells_too = 0;
+  bool tags_pay = false;  // cells are told apart (cells_too is told_apart)
 };
 ReachableEntries reachable_entries(const World& world, const CollisionPairs& pairs, double cell_m) {
   const SpatialHash cuts(cell_m, 1, HashFunction::Mixed);
@@ -174,7 +176,22 @@ ReachableEntries reachable_entries(const World& world, const CollisionPairs& pai
           }
     }
   }
-  out.cells_too = cells_told_apart ? out.told_apart : out.tets_only;
+  // The tags pay where some walked body has under a quarter of its
+  // vertices in cells holding a vertex of another walked body (any vertex,
+  // so all of its own, when it collides with itself).
+  bool some_body_apart = false;
+  for (std::size_t b = 0; b < n; ++b) {
+    if (!pairs.has_partner(b)) continue;
+    std::size_t taking = 0;
+    for (const Vec3& p : world.bodies[b].x_m) {
+      const Cell cell{cuts.cell_of(p.x()), cuts.cell_of(p.y()), cuts.cell_of(p.z())};
+      const std::set<std::size_t>& in_cell = holders[cell];
+      taking += pairs.enabled(b, b) || in_cell.size() > 1 || *in_cell.begin() != b;
+    }
+    some_body_apart = some_body_apart || 4 * taking < world.bodies[b].x_m.size();
+  }
+  out.tags_pay = cells_told_apart && some_body_apart;
+  out.cells_too = out.tags_pay ? out.told_apart : out.tets_only;
   return out;
 }
 
@@ -601,7 +618,7 @@ TEST_CASE("a hash made for queries at its own positions leaves out the tets no q
   // the bodies moved (its grid and tags made anew) must hold exactly the
   // new positions' entries: a tag left from the last hash would add some.
   bool some_skipped = false, some_cells_left_out = false, some_all_self = false, some_dense_again = false;
-  bool some_unmade = false;
+  bool some_unmade = false, some_told_apart = false, some_declined = false;
   for_each_scene_apart([&](World& world, const CollisionPairs& pairs, const DetectionSettings& settings) {
     TetHashDetector full(world, settings);
     const std::uint64_t full_work = full.hash_tets(world, pairs);
@@ -613,6 +630,9 @@ TEST_CASE("a hash made for queries at its own positions leaves out the tets no q
       CHECK(reached.hash_tets(world, pairs, threads > 0 ? &pool : nullptr, true) == full_work);
       REQUIRE(reached.hash().dense());  // every test scene's grid is small enough
       CHECK(reached.hash().entry_count() == want.cells_too);
+      CHECK(reached.cells_told_apart() == want.tags_pay);
+      some_told_apart = some_told_apart || want.tags_pay;
+      some_declined = some_declined || (!want.tags_pay && want.told_apart < want.tets_only);
       some_skipped = some_skipped || want.tets_only < full.hash().entry_count();
       some_cells_left_out = some_cells_left_out || want.cells_too < want.tets_only;
       // Some tets left out before their boxes were made (the shortcut the
@@ -670,6 +690,10 @@ TEST_CASE("a hash made for queries at its own positions leaves out the tets no q
   CHECK(some_all_self);
   CHECK(some_dense_again);
   CHECK(some_unmade);
+  CHECK(some_told_apart);
+  INFO("a scene where telling cells apart would leave entries out, but no body has under a quarter of its "
+       "vertices in taking cells");
+  CHECK(some_declined);
 }
 
 TEST_CASE("a body with vertices in no tet: its union is its tets' boxes', not its vertices', and the table and every "
