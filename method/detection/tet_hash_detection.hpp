@@ -339,11 +339,12 @@ class TetHashDetector {
   static bool takes(std::uint32_t tag, std::uint32_t own) { return (tag != kNoVertex) & (tag != own); }
   std::size_t m_tets_unmade = 0;
   bool m_told_apart = false;
-  /// Fills m_cell_tag and m_own_tag from the walked bodies' vertices;
-  /// returns false where tags would not pay (every walked body collides
-  /// with itself, or has a quarter or more of its vertices in cells that
-  /// take its tets), or if a vertex lies outside the grid, which the grid's
-  /// range rules out; the tags are not used then.
+  /// Fills m_cell_tag, m_own_tag, m_vertex_cell, m_reach_cells and
+  /// m_ask_untagged from the walked bodies' vertices; returns false where
+  /// tags would not pay (every walked body has a quarter or more of its
+  /// vertices in cells that take its tets, as every self-colliding body
+  /// has), or if a vertex lies outside the grid, which the grid's range
+  /// rules out; the tags are not used then.
   bool tag_query_cells(const World& world, const CollisionPairs& pairs);
   /// With the tags in use, the cells of slot `id`'s box, from its vertices'
   /// m_vertex_cell (cell_of is monotone, so a box's first and last cell
