@@ -195,6 +195,21 @@ ReachableEntries reachable_entries(const World& world, const CollisionPairs& pai
   return out;
 }
 
+// A detector hashed for queries at its own positions on `threads` threads
+// (0: without a pool): it must charge the full table's work, lay out a dense
+// grid (every test scene's grid is small enough) and hold exactly the
+// entries `want` counts, by the model's choice of rule.
+TetHashDetector hash_reached(const World& world, const CollisionPairs& pairs, const DetectionSettings& settings,
+                             int threads, std::uint64_t full_work, const ReachableEntries& want) {
+  WorkerPool pool(std::max(threads, 1));
+  TetHashDetector reached(world, settings);
+  CHECK(reached.hash_tets(world, pairs, threads > 0 ? &pool : nullptr, true) == full_work);
+  REQUIRE(reached.hash().dense());
+  CHECK(reached.hash().entry_count() == want.cells_too);
+  CHECK(reached.cells_told_apart() == want.tags_pay);
+  return reached;
+}
+
 std::uint64_t refresh(const World& world, const CollisionPairs& pairs, TetHashDetector& detector,
                       std::size_t per_task) {
   detector.begin_refresh();
@@ -629,12 +644,7 @@ TEST_CASE("a hash made for queries at its own positions leaves out the tets no q
     const ReachableEntries want = reachable_entries(world, pairs, settings.cell_size_m);
     for (const int threads : {0, 1, 2}) {
       INFO(threads << " threads");
-      WorkerPool pool(std::max(threads, 1));
-      TetHashDetector reached(world, settings);
-      CHECK(reached.hash_tets(world, pairs, threads > 0 ? &pool : nullptr, true) == full_work);
-      REQUIRE(reached.hash().dense());  // every test scene's grid is small enough
-      CHECK(reached.hash().entry_count() == want.cells_too);
-      CHECK(reached.cells_told_apart() == want.tags_pay);
+      TetHashDetector reached = hash_reached(world, pairs, settings, threads, full_work, want);
       some_told_apart = some_told_apart || want.tags_pay;
       some_declined = some_declined || (!want.tags_pay && want.told_apart < want.tets_only);
       some_skipped = some_skipped || want.tets_only < full.hash().entry_count();
@@ -747,11 +757,7 @@ TEST_CASE("a body with vertices in no tet: its union is its tets' boxes', not it
     const ReachableEntries want = reachable_entries(world, pairs, settings.cell_size_m);
     for (const int threads : {0, 1, 2}) {
       INFO(threads << " threads");
-      WorkerPool pool(std::max(threads, 1));
-      TetHashDetector reached(world, settings);
-      CHECK(reached.hash_tets(world, pairs, threads > 0 ? &pool : nullptr, true) == full_work);
-      REQUIRE(reached.hash().dense());
-      CHECK(reached.hash().entry_count() == want.cells_too);
+      TetHashDetector reached = hash_reached(world, pairs, settings, threads, full_work, want);
       require_same_queries(world, pairs, full, reached);
       for (const TetHashDetector* detector : {&full, &reached})
         for (std::size_t o = 0; o < world.bodies.size(); ++o) {
