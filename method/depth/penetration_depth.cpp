@@ -38,6 +38,7 @@ std::uint64_t SurfaceHash::hash_triangle(const World& world, std::int32_t body, 
   Box& box = m_boxes[id];
   triangle_box(world, body, triangle, box.lo, box.hi);
   note_hash_step(world.step_index);
+  note_insert(id);
   return work::kCellInsert * m_hash.insert_box(box.lo, box.hi, id);
 }
 
@@ -85,6 +86,15 @@ void SurfaceHash::hash_all(const World& world, const std::vector<std::int32_t>& 
     return true;
   };
   if (first.back() > 0) note_hash_step(world.step_index);
+  // The walk inserts ids ascending (bodies ascending, each body's triangles
+  // ascending), the parallel build keeping every bucket's order: as many
+  // hash_triangle() calls in walk order would note.
+  for (std::size_t k = 0; k + 1 < first.size(); ++k) {
+    if (first[k + 1] == first[k]) continue;
+    const std::uint32_t lowest = m_offset[static_cast<std::size_t>(bodies[k])];
+    note_insert(lowest);
+    note_insert(lowest + static_cast<std::uint32_t>(first[k + 1] - first[k] - 1));
+  }
   // Each triangle's cells as its insertion counted them: its work, as
   // hash_triangle() charges it (an absurd box throws there, and no work is read).
   m_hash.insert_all_and_build(first.back(), box_of, pool, SpatialHash::kBucketsPerOwner, work.data());

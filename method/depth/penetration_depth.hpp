@@ -40,6 +40,8 @@ class SurfaceHash {
   void begin_epoch() {
     m_hash.begin_epoch();
     m_boxes_step = kNoStep;
+    m_ids_ascending = true;
+    m_last_id = 0;
   }
   /// Hashes one surface triangle at the current positions; returns work units.
   std::uint64_t hash_triangle(const World& world, std::int32_t body, std::int32_t triangle);
@@ -87,30 +89,59 @@ class SurfaceHash {
   /// positions); false once triangles of two steps are in (fine tasks
   /// spanning steps), and before the first.
   bool boxes_at(std::int64_t step_index) const { return m_boxes_step == step_index; }
+  /// Whether this epoch's triangles went in by ascending id (the cycle's
+  /// order), which lets a query skip the other bodies' runs of a bucket.
+  bool ids_ascending() const { return m_ids_ascending; }
   /// The box a triangle of `body` was hashed with (one hashed this epoch).
   const Box& hashed_box(std::int32_t body, std::int32_t triangle) const {
     return m_boxes[m_offset[static_cast<std::size_t>(body)] + static_cast<std::uint32_t>(triangle)];
   }
 
-  /// Calls f(triangle) for each distinct triangle of `body` hashed in the cells of [lo, hi].
+  /// Calls f(triangle) for each distinct triangle of `body` hashed in the
+  /// cells of [lo, hi], in the order the cells' buckets list them.
   template <typename F>
   void for_each_candidate(std::int32_t body, const Vec3& lo, const Vec3& hi, QueryScratch& scratch, F&& f) const {
-    // A triangle of `body` is an id in its range: an entry of another body
-    // is told by arithmetic, without a read (a bucket's entries are mostly
-    // other bodies' where bodies touch).
+    // A triangle of `body` is an id in [first, end). The cycle inserts the
+    // triangles in ascending id (bodies ascending, each body's triangles
+    // ascending, by hash_triangle() or hash_all()), and a bucket keeps its
+    // insertion order, so then a bucket lists its ids ascending: this
+    // body's form one run, found past the lower ids and left at the first
+    // higher one. The same triangles in the same order as testing every
+    // entry, without a branch an entry on the other bodies' (a bucket's
+    // entries are mostly other bodies' where bodies touch). An epoch hashed
+    // in another order tests every entry.
     const std::uint32_t first = m_offset[static_cast<std::size_t>(body)];
-    const std::uint32_t count = m_offset[static_cast<std::size_t>(body) + 1] - first;
+    const std::uint32_t end = m_offset[static_cast<std::size_t>(body) + 1];
     std::uint64_t* const seen = scratch.seen.data();
     const std::uint64_t query = ++scratch.query;
-    m_hash.for_each_in_box(lo, hi, [&](std::uint32_t id) {
-      if (id - first >= count || seen[id] == query) return;
-      seen[id] = query;
-      f(static_cast<std::int32_t>(id - first));
+    const bool ascending = m_ids_ascending;
+    m_hash.for_each_range_in_box(lo, hi, [&](const std::uint32_t* it, const std::uint32_t* last) {
+      if (!ascending) {
+        for (; it != last; ++it) {
+          const std::uint32_t id = *it;
+          if (id - first >= end - first || seen[id] == query) continue;
+          seen[id] = query;
+          f(static_cast<std::int32_t>(id - first));
+        }
+        return;
+      }
+      while (it != last && *it < first) ++it;
+      for (; it != last && *it < end; ++it) {
+        const std::uint32_t id = *it;
+        if (seen[id] == query) continue;
+        seen[id] = query;
+        f(static_cast<std::int32_t>(id - first));
+      }
     });
   }
 
  private:
   void triangle_box(const World& world, std::int32_t body, std::int32_t triangle, Vec3& lo, Vec3& hi) const;
+  /// Records that triangle `id` is inserted next (ids_ascending()).
+  void note_insert(std::uint32_t id) {
+    if (id < m_last_id) m_ids_ascending = false;
+    m_last_id = id;
+  }
   /// Records that a triangle was hashed at world step `step_index`.
   void note_hash_step(std::int64_t step_index) {
     if (m_boxes_step == kNoStep)
@@ -132,6 +163,10 @@ class SurfaceHash {
   /// the triangle's corners (4 scattered reads), when boxes_at() the step.
   std::vector<Box> m_boxes;
   std::int64_t m_boxes_step = kNoStep;
+  /// Whether this epoch's triangles were inserted in non-decreasing id, so
+  /// every bucket lists its ids so (for_each_candidate); the last inserted.
+  bool m_ids_ascending = true;
+  std::uint32_t m_last_id = 0;
 };
 
 /// border_point_depth() in pieces, one border edge a piece, for schedules

@@ -1,10 +1,13 @@
 // Penetration depth on configurations with known answers.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "baselines/registry.hpp"
 #include "method/depth/penetration_depth.hpp"
+#include "sim/parallel/worker_pool.hpp"
 #include "tests/method/test_worlds.hpp"
 
 using namespace tcb;
@@ -200,4 +203,68 @@ TEST_CASE("depth: the border search rejects on hashed boxes only in the step the
   for (std::size_t i = 0; i < out.size(); ++i)
     missed += same_step[i].depth_source == DepthSource::Border && out[i].depth_source != DepthSource::Border;
   CHECK(missed > 0);
+}
+
+TEST_CASE("depth: a surface query meets the same triangles whichever order they were hashed in", "[depth]") {
+  // A query takes only its body's run of a bucket when the triangles went in
+  // by ascending id (the cycle's order, hash_all's too); hashed in another
+  // order it tests every entry. Three overlapping blocks on cells twice the
+  // default, so buckets list several bodies' triangles: every query must
+  // meet the same triangles of each body either way, and in the same order
+  // when both orders ascend.
+  const test::TestScene scene =
+      test::scene_of({{"a", "box:size=0.4x0.2x0.4,cells=6x3x6", Vec3::Zero()},
+                      {"b", "box:size=0.3x0.3x0.3,cells=5x5x5", Vec3(0.05, 0.1, 0.02)},
+                      {"c", "box:size=0.2x0.4x0.2,cells=3x6x3", Vec3(-0.07, 0.05, 0.06)}});
+  const World world = build_world(scene.world);
+  const double cell_m = 2.0 * test::settings_of(world, scene).detection.cell_size_m;
+  const HashFunction function = test::settings_of(world, scene).detection.hash;
+  const std::vector<std::int32_t> bodies = {0, 1, 2};
+  const auto hash_in_order = [&](SurfaceHash& s, bool descending) {
+    s.begin_epoch();
+    for (std::size_t k = 0; k < bodies.size(); ++k) {
+      const std::int32_t b = descending ? bodies[bodies.size() - 1 - k] : bodies[k];
+      const auto n = static_cast<std::int32_t>(world.bodies[static_cast<std::size_t>(b)].mesh->surface.size());
+      for (std::int32_t t = 0; t < n; ++t) s.hash_triangle(world, b, descending ? n - 1 - t : t);
+    }
+    s.build();
+  };
+  SurfaceHash whole(world, cell_m, function), ascending(world, cell_m, function), descending(world, cell_m, function);
+  WorkerPool one(1);
+  std::vector<std::uint64_t> work;
+  whole.begin_epoch();
+  whole.hash_all(world, bodies, one, work);
+  hash_in_order(ascending, false);
+  hash_in_order(descending, true);
+  REQUIRE(whole.ids_ascending());
+  REQUIRE(ascending.ids_ascending());
+  REQUIRE_FALSE(descending.ids_ascending());
+
+  SurfaceHash::QueryScratch scratch = whole.make_scratch();
+  const auto met = [&](const SurfaceHash& s, std::int32_t body, const Vec3& lo, const Vec3& hi) {
+    std::vector<std::int32_t> out;
+    s.for_each_candidate(body, lo, hi, scratch, [&](std::int32_t t) { out.push_back(t); });
+    return out;
+  };
+  int queries = 0, shared = 0;
+  for (const Body& source : world.bodies) {
+    for (const Vec3& x : source.x_m) {
+      const Vec3 lo = x - Vec3::Constant(0.3 * cell_m), hi = x + Vec3::Constant(0.3 * cell_m);
+      int bodies_met = 0;
+      for (const std::int32_t b : bodies) {
+        const std::vector<std::int32_t> w = met(whole, b, lo, hi), a = met(ascending, b, lo, hi);
+        std::vector<std::int32_t> d = met(descending, b, lo, hi), sorted_w = w;
+        REQUIRE(w == a);
+        std::sort(sorted_w.begin(), sorted_w.end());
+        std::sort(d.begin(), d.end());
+        REQUIRE(sorted_w == d);
+        REQUIRE(std::adjacent_find(d.begin(), d.end()) == d.end());  // each triangle once
+        bodies_met += !w.empty();
+        ++queries;
+      }
+      shared += bodies_met > 1;
+    }
+  }
+  REQUIRE(queries > 0);
+  REQUIRE(shared > 0);  // buckets that list several bodies' triangles were met
 }
