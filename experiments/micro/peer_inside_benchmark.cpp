@@ -28,14 +28,14 @@
 // after the last, the dog pair once showed 1,542 / 1,541 / 1,542 for
 // geometries one wave apart). Boundary conventions differ: ours
 // is symbolic (a point on a face shared by two objects is inside one of
-// them), CGAL's closed, FCL's its own tolerance. On the dog pair that moves
-// the last few points; on plates20, whose stacked plates touch face to face,
+// them), CGAL's closed, FCL's its own tolerance. On plates20, whose
+// stacked plates touch face to face,
 // the peers count the touching vertices of both plates (each lies on the
 // other's face) and ours those of the lower plate only (the perturbation
 // points up): 2,432 against 1,216 at the origin. BM_PeersPaired checks
 // every vertex against CGAL's exact classification (see its comment): in
-// its 12 iterations all three agree at every vertex off the boundary on both
-// scenes, and the dog pair has no vertex on one.
+// its 12 iterations all three agree at every vertex off a tet's boundary on
+// both scenes, and no dog pair vertex lies on one.
 //   build/release/experiments/micro/micro_peer_inside --benchmark_repetitions=3
 #include <benchmark/benchmark.h>
 
@@ -285,9 +285,12 @@ std::int64_t cgal_inside(const World& world) {
 // Where each vertex lies against the other objects' tets, by CGAL's exact
 // orientations (not timed; the check of the paired benchmark): outside
 // every closed tet, on the boundary only (in a closed tet, strictly inside
-// none: on a face, an edge or a corner), or strictly inside one. Degenerate
-// tets are skipped, as every peer skips them. Off the boundary every
-// convention must agree with this answer; on it, each decides its own way.
+// none: on a face, an edge or a corner, interior faces between two tets
+// included), or strictly inside one. Tets flat at these positions are
+// skipped, as cgal_inside skips them (ours skips tets flat at rest, FCL
+// tests every tet; these scenes have none). Off the boundary every
+// convention must agree with this answer; on it, each decides its own way
+// (a vertex on a face between two tets of one object is inside for all).
 enum class Where : char { Outside, Boundary, Inside };
 std::vector<std::vector<Where>> cgal_where(const World& world) {
   std::vector<Box> points, tets;
@@ -473,8 +476,9 @@ void BM_Fcl(benchmark::State& state) {
 // tolerance may decide vertices near a face either way: its disagreements
 // off the boundary are counted (fcl_off_boundary, the most in an
 // iteration), and on the dog pair its count may differ from ours by at most
-// 2. boundary_points: vertices on the boundary only (the most in an
-// iteration), where the peers may differ by design.
+// 2 (kept from before this check, for a tolerance no vertex has met yet:
+// fcl_off_boundary has been 0). boundary_points: vertices on a boundary
+// only (the most in an iteration), where the conventions may differ.
 void BM_PeersPaired(benchmark::State& state) {
   const int scene = static_cast<int>(state.range(0));
   Ours fresh(scene), kept(scene);  // two detectors; all four answer at fresh.world's positions

@@ -86,9 +86,10 @@ void SurfaceHash::hash_all(const World& world, const std::vector<std::int32_t>& 
     return true;
   };
   if (first.back() > 0) note_hash_step(world.step_index);
-  // The walk inserts ids ascending (bodies ascending, each body's triangles
-  // ascending), the parallel build keeping every bucket's order: as many
-  // hash_triangle() calls in walk order would note.
+  // Each body's triangles go in ascending and its ids are contiguous, so
+  // noting its lowest and highest id in walk order notes what as many
+  // hash_triangle() calls would (ascending overall when `bodies` ascends,
+  // the cycle's order); the parallel build keeps every bucket's order.
   for (std::size_t k = 0; k + 1 < first.size(); ++k) {
     if (first[k + 1] == first[k]) continue;
     const std::uint32_t lowest = m_offset[static_cast<std::size_t>(bodies[k])];

@@ -105,11 +105,11 @@ class SurfaceHash {
     // triangles in ascending id (bodies ascending, each body's triangles
     // ascending, by hash_triangle() or hash_all()), and a bucket keeps its
     // insertion order, so then a bucket lists its ids ascending: this
-    // body's form one run, found past the lower ids and left at the first
-    // higher one. The same triangles in the same order as testing every
-    // entry, without a branch an entry on the other bodies' (a bucket's
-    // entries are mostly other bodies' where bodies touch). An epoch hashed
-    // in another order tests every entry.
+    // body's form one run. Lower ids are passed by one comparison each, and
+    // the scan stops at the first higher one, whose entries and the rest
+    // are not read (a bucket's entries are mostly other bodies' where
+    // bodies touch). The same triangles in the same order as testing every
+    // entry. An epoch hashed in another order tests every entry.
     const std::uint32_t first = m_offset[static_cast<std::size_t>(body)];
     const std::uint32_t end = m_offset[static_cast<std::size_t>(body) + 1];
     std::uint64_t* const seen = scratch.seen.data();

@@ -207,11 +207,11 @@ TEST_CASE("depth: the border search rejects on hashed boxes only in the step the
 
 TEST_CASE("depth: a surface query meets the same triangles whichever order they were hashed in", "[depth]") {
   // A query takes only its body's run of a bucket when the triangles went in
-  // by ascending id (the cycle's order, hash_all's too); hashed in another
-  // order it tests every entry. Three overlapping blocks on cells twice the
-  // default, so buckets list several bodies' triangles: every query must
-  // meet the same triangles of each body either way, and in the same order
-  // when both orders ascend.
+  // by ascending id (the cycle's order, hash_all's with bodies ascending, on
+  // any thread count); hashed in another order it tests every entry. Three
+  // overlapping blocks on cells twice the default, so queries meet several
+  // bodies' triangles: every query must meet the same triangles of each
+  // body either way, each once, and in the same order when both ascend.
   const test::TestScene scene =
       test::scene_of({{"a", "box:size=0.4x0.2x0.4,cells=6x3x6", Vec3::Zero()},
                       {"b", "box:size=0.3x0.3x0.3,cells=5x5x5", Vec3(0.05, 0.1, 0.02)},
@@ -229,16 +229,23 @@ TEST_CASE("depth: a surface query meets the same triangles whichever order they 
     }
     s.build();
   };
-  SurfaceHash whole(world, cell_m, function), ascending(world, cell_m, function), descending(world, cell_m, function);
-  WorkerPool one(1);
+  SurfaceHash whole(world, cell_m, function), on_three(world, cell_m, function), ascending(world, cell_m, function),
+      descending(world, cell_m, function), whole_descending(world, cell_m, function);
+  WorkerPool one(1), three(3);
   std::vector<std::uint64_t> work;
   whole.begin_epoch();
   whole.hash_all(world, bodies, one, work);
+  on_three.begin_epoch();
+  on_three.hash_all(world, bodies, three, work);
+  whole_descending.begin_epoch();
+  whole_descending.hash_all(world, {2, 1, 0}, one, work);
   hash_in_order(ascending, false);
   hash_in_order(descending, true);
   REQUIRE(whole.ids_ascending());
+  REQUIRE(on_three.ids_ascending());
   REQUIRE(ascending.ids_ascending());
   REQUIRE_FALSE(descending.ids_ascending());
+  REQUIRE_FALSE(whole_descending.ids_ascending());
 
   SurfaceHash::QueryScratch scratch = whole.make_scratch();
   const auto met = [&](const SurfaceHash& s, std::int32_t body, const Vec3& lo, const Vec3& hi) {
@@ -253,11 +260,15 @@ TEST_CASE("depth: a surface query meets the same triangles whichever order they 
       int bodies_met = 0;
       for (const std::int32_t b : bodies) {
         const std::vector<std::int32_t> w = met(whole, b, lo, hi), a = met(ascending, b, lo, hi);
-        std::vector<std::int32_t> d = met(descending, b, lo, hi), sorted_w = w;
+        std::vector<std::int32_t> d = met(descending, b, lo, hi), wd = met(whole_descending, b, lo, hi),
+                                  sorted_w = w;
         REQUIRE(w == a);
+        REQUIRE(met(on_three, b, lo, hi) == w);
         std::sort(sorted_w.begin(), sorted_w.end());
         std::sort(d.begin(), d.end());
+        std::sort(wd.begin(), wd.end());
         REQUIRE(sorted_w == d);
+        REQUIRE(sorted_w == wd);
         REQUIRE(std::adjacent_find(d.begin(), d.end()) == d.end());  // each triangle once
         bodies_met += !w.empty();
         ++queries;
@@ -266,5 +277,5 @@ TEST_CASE("depth: a surface query meets the same triangles whichever order they 
     }
   }
   REQUIRE(queries > 0);
-  REQUIRE(shared > 0);  // buckets that list several bodies' triangles were met
+  REQUIRE(shared > 0);  // queries that met several bodies' triangles
 }
