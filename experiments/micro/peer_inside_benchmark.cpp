@@ -245,25 +245,37 @@ void BM_QueryClasses(benchmark::State& state) {
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::pair<std::int32_t, std::int32_t>>;
 
+// What a CGAL user builds for the query at the world's current positions:
+// each vertex as a CGAL point, and a box for each vertex and each tet, with
+// its (body, index).
+struct CgalInput {
+  std::vector<Box> points, tets;
+  std::vector<std::vector<K::Point_3>> x;
+};
+CgalInput cgal_input(const World& world) {
+  CgalInput in;
+  in.x.resize(world.bodies.size());
+  for (std::int32_t b = 0; b < static_cast<std::int32_t>(world.bodies.size()); ++b) {
+    const Body& body = world.bodies[b];
+    std::vector<K::Point_3>& x = in.x[b];
+    for (const Vec3& p : body.x_m) x.emplace_back(p.x(), p.y(), p.z());
+    for (std::int32_t v = 0; v < static_cast<std::int32_t>(x.size()); ++v)
+      in.points.emplace_back(x[v].bbox(), std::make_pair(b, v));
+    for (std::int32_t t = 0; t < static_cast<std::int32_t>(body.mesh->tet_count()); ++t) {
+      const Tet& q = body.mesh->tets[t];
+      in.tets.emplace_back(x[q[0]].bbox() + x[q[1]].bbox() + x[q[2]].bbox() + x[q[3]].bbox(), std::make_pair(b, t));
+    }
+  }
+  return in;
+}
+
 // CGAL's answer at the world's current positions: the vertices inside some
 // tet of another object.
 std::int64_t cgal_inside(const World& world) {
-  std::vector<Box> points, tets;
-  std::vector<std::vector<K::Point_3>> x(world.bodies.size());
-  for (std::int32_t b = 0; b < static_cast<std::int32_t>(world.bodies.size()); ++b) {
-    const Body& body = world.bodies[b];
-    for (const Vec3& p : body.x_m) x[b].emplace_back(p.x(), p.y(), p.z());
-    for (std::int32_t v = 0; v < static_cast<std::int32_t>(x[b].size()); ++v)
-      points.emplace_back(x[b][v].bbox(), std::make_pair(b, v));
-    for (std::int32_t t = 0; t < static_cast<std::int32_t>(body.mesh->tet_count()); ++t) {
-      const Tet& q = body.mesh->tets[t];
-      tets.emplace_back(x[b][q[0]].bbox() + x[b][q[1]].bbox() + x[b][q[2]].bbox() + x[b][q[3]].bbox(),
-                        std::make_pair(b, t));
-    }
-  }
-  std::vector<std::vector<char>> found(world.bodies.size());
-  for (std::size_t b = 0; b < world.bodies.size(); ++b) found[b].assign(x[b].size(), 0);
-  CGAL::box_intersection_d(points.begin(), points.end(), tets.begin(), tets.end(), [&](const Box& p, const Box& t) {
+  CgalInput in = cgal_input(world);
+  const std::vector<std::vector<K::Point_3>>& x = in.x;
+  Flags found = no_flags(world);
+  const auto test = [&](const Box& p, const Box& t) {
     const auto [pb, pv] = p.info();
     const auto [tb, ti] = t.info();
     if (pb == tb || found[pb][pv]) return;
@@ -276,7 +288,8 @@ std::int64_t cgal_inside(const World& world) {
         CGAL::orientation(*c[0], *c[1], r, *c[3]) == -o || CGAL::orientation(*c[0], *c[1], *c[2], r) == -o)
       return;
     found[pb][pv] = 1;
-  });
+  };
+  CGAL::box_intersection_d(in.points.begin(), in.points.end(), in.tets.begin(), in.tets.end(), test);
   std::int64_t inside = 0;
   for (const auto& f : found) inside += std::count(f.begin(), f.end(), 1);
   return inside;
@@ -293,22 +306,11 @@ std::int64_t cgal_inside(const World& world) {
 // (a vertex on a face between two tets of one object is inside for all).
 enum class Where : char { Outside, Boundary, Inside };
 std::vector<std::vector<Where>> cgal_where(const World& world) {
-  std::vector<Box> points, tets;
-  std::vector<std::vector<K::Point_3>> x(world.bodies.size());
+  CgalInput in = cgal_input(world);
+  const std::vector<std::vector<K::Point_3>>& x = in.x;
   std::vector<std::vector<Where>> where(world.bodies.size());
-  for (std::int32_t b = 0; b < static_cast<std::int32_t>(world.bodies.size()); ++b) {
-    const Body& body = world.bodies[b];
-    for (const Vec3& p : body.x_m) x[b].emplace_back(p.x(), p.y(), p.z());
-    where[b].assign(x[b].size(), Where::Outside);
-    for (std::int32_t v = 0; v < static_cast<std::int32_t>(x[b].size()); ++v)
-      points.emplace_back(x[b][v].bbox(), std::make_pair(b, v));
-    for (std::int32_t t = 0; t < static_cast<std::int32_t>(body.mesh->tet_count()); ++t) {
-      const Tet& q = body.mesh->tets[t];
-      tets.emplace_back(x[b][q[0]].bbox() + x[b][q[1]].bbox() + x[b][q[2]].bbox() + x[b][q[3]].bbox(),
-                        std::make_pair(b, t));
-    }
-  }
-  CGAL::box_intersection_d(points.begin(), points.end(), tets.begin(), tets.end(), [&](const Box& p, const Box& t) {
+  for (std::size_t b = 0; b < world.bodies.size(); ++b) where[b].assign(x[b].size(), Where::Outside);
+  const auto classify = [&](const Box& p, const Box& t) {
     const auto [pb, pv] = p.info();
     const auto [tb, ti] = t.info();
     if (pb == tb || where[pb][pv] == Where::Inside) return;
@@ -325,7 +327,8 @@ std::vector<std::vector<Where>> cgal_where(const World& world) {
       strict = strict && side == o;
     }
     where[pb][pv] = strict ? Where::Inside : Where::Boundary;
-  });
+  };
+  CGAL::box_intersection_d(in.points.begin(), in.points.end(), in.tets.begin(), in.tets.end(), classify);
   return where;
 }
 
@@ -415,10 +418,9 @@ class FclPeer {
     }
     m_tets.update();
     m_points.update();
-    std::vector<std::vector<char>> found(world.bodies.size());
-    for (std::size_t b = 0; b < world.bodies.size(); ++b) found[b].assign(world.bodies[b].x_m.size(), 0);
+    Flags found = no_flags(world);
     m_tets.collide(&m_points, &found, [](fcl::CollisionObjectd* o1, fcl::CollisionObjectd* o2, void* data) {
-      auto& seen = *static_cast<std::vector<std::vector<char>>*>(data);
+      auto& seen = *static_cast<Flags*>(data);
       const auto* a = static_cast<const std::pair<std::int32_t, std::int32_t>*>(o1->getUserData());
       const auto* p = static_cast<const std::pair<std::int32_t, std::int32_t>*>(o2->getUserData());
       if (o2->collisionGeometry()->getNodeType() != fcl::GEOM_SPHERE) {  // the managers' order is not promised

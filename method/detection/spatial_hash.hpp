@@ -154,6 +154,10 @@ class SpatialHash {
   struct GridShape {
     std::int64_t first[3];
     std::uint64_t cells[3];
+    /// The bucket of the cell at offsets (di, dj, dk) into the grid.
+    std::size_t index(std::uint64_t di, std::uint64_t dj, std::uint64_t dk) const {
+      return static_cast<std::size_t>((di * cells[1] + dj) * cells[2] + dk);
+    }
   };
   GridShape grid_shape() const {
     return {{m_grid.i0, m_grid.j0, m_grid.k0}, {m_grid_n[0], m_grid_n[1], m_grid_n[2]}};

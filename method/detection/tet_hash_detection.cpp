@@ -303,9 +303,8 @@ std::size_t TetHashDetector::cells_if_none_takes(std::uint32_t id, std::size_t b
     return static_cast<std::size_t>(cells);
   const std::uint32_t* const tag = m_cell_tag.data();
   const std::uint32_t mine = m_own_tag[body];
-  const std::uint64_t nj = m_tag_grid.cells[1], nk = m_tag_grid.cells[2];
   const auto takes_tet = [mine](std::uint32_t t) { return takes(t, mine); };
-  const auto row = [&](std::uint64_t i, std::uint64_t j) { return tag + (i * nj + j) * nk; };
+  const auto row = [&](std::uint64_t i, std::uint64_t j) { return tag + m_tag_grid.index(i, j, 0); };
   bool taken = false;
   if (i1 - i0 <= 1 && j1 - j0 <= 1 && k1 - k0 <= 1) {
     // At most two cells along each axis (70 % of the dog pair's tets): the
@@ -431,7 +430,7 @@ bool TetHashDetector::tag_query_cells(const World& world, const CollisionPairs& 
     std::size_t taking = 0;
     for (std::size_t v = 0; v < n; ++v) {
       const GridOffset& c = offsets[v];
-      const std::uint32_t tag = m_cell_tag[(c.i * m_tag_grid.cells[1] + c.j) * m_tag_grid.cells[2] + c.k];
+      const std::uint32_t tag = m_cell_tag[m_tag_grid.index(c.i, c.j, c.k)];
       taking += takes(tag, m_own_tag[o]);
     }
     m_ask_untagged[o] = 4 * taking < n;

@@ -195,19 +195,27 @@ ReachableEntries reachable_entries(const World& world, const CollisionPairs& pai
   return out;
 }
 
-// A detector hashed for queries at its own positions on `threads` threads
-// (0: without a pool): it must charge the full table's work, lay out a dense
-// grid (every test scene's grid is small enough) and hold exactly the
-// entries `want` counts, by the model's choice of rule.
-TetHashDetector hash_reached(const World& world, const CollisionPairs& pairs, const DetectionSettings& settings,
-                             int threads, std::uint64_t full_work, const ReachableEntries& want) {
-  WorkerPool pool(std::max(threads, 1));
-  TetHashDetector reached(world, settings);
-  CHECK(reached.hash_tets(world, pairs, threads > 0 ? &pool : nullptr, true) == full_work);
-  REQUIRE(reached.hash().dense());
-  CHECK(reached.hash().entry_count() == want.cells_too);
-  CHECK(reached.cells_told_apart() == want.tags_pay);
-  return reached;
+// On 0 to 2 threads (0: without a pool), a detector hashed for queries at
+// its own positions: it must charge the work of `full` (the full table,
+// hashed here with `full_work`), lay out a dense grid (every test scene's
+// grid is small enough), hold exactly the entries reachable_entries()
+// counts, by the model's choice of rule, and answer and charge every query
+// as `full` does; then check(reached, want) checks the rest.
+template <typename Check>
+void check_reached(const World& world, const CollisionPairs& pairs, const DetectionSettings& settings,
+                   TetHashDetector& full, std::uint64_t full_work, Check&& check) {
+  const ReachableEntries want = reachable_entries(world, pairs, settings.cell_size_m);
+  for (const int threads : {0, 1, 2}) {
+    INFO(threads << " threads");
+    WorkerPool pool(std::max(threads, 1));
+    TetHashDetector reached(world, settings);
+    CHECK(reached.hash_tets(world, pairs, threads > 0 ? &pool : nullptr, true) == full_work);
+    REQUIRE(reached.hash().dense());
+    CHECK(reached.hash().entry_count() == want.cells_too);
+    CHECK(reached.cells_told_apart() == want.tags_pay);
+    require_same_queries(world, pairs, full, reached);
+    check(reached, want);
+  }
 }
 
 std::uint64_t refresh(const World& world, const CollisionPairs& pairs, TetHashDetector& detector,
@@ -641,10 +649,8 @@ TEST_CASE("a hash made for queries at its own positions leaves out the tets no q
   for_each_scene_apart([&](World& world, const CollisionPairs& pairs, const DetectionSettings& settings) {
     TetHashDetector full(world, settings);
     const std::uint64_t full_work = full.hash_tets(world, pairs);
-    const ReachableEntries want = reachable_entries(world, pairs, settings.cell_size_m);
-    for (const int threads : {0, 1, 2}) {
-      INFO(threads << " threads");
-      TetHashDetector reached = hash_reached(world, pairs, settings, threads, full_work, want);
+    check_reached(world, pairs, settings, full, full_work, [&](const TetHashDetector& reached,
+                                                               const ReachableEntries& want) {
       some_told_apart = some_told_apart || want.tags_pay;
       some_declined = some_declined || (!want.tags_pay && want.told_apart < want.tets_only);
       some_skipped = some_skipped || want.tets_only < full.hash().entry_count();
@@ -653,7 +659,6 @@ TEST_CASE("a hash made for queries at its own positions leaves out the tets no q
       // checks here and below must cover), and none by the full table.
       some_unmade = some_unmade || reached.tets_unmade() > 0;
       CHECK(full.tets_unmade() == 0);
-      require_same_queries(world, pairs, full, reached);
       for (std::size_t b = 0; b < world.bodies.size(); ++b) {
         // Its tets' boxes, though most of them were never made (the union
         // taken from the vertices, where every vertex is in a tet).
@@ -663,7 +668,7 @@ TEST_CASE("a hash made for queries at its own positions leaves out the tets no q
         CHECK(full.body_box(b).lo == want_union.lo);
         CHECK(full.body_box(b).hi == want_union.hi);
       }
-    }
+    });
     {
       std::vector<std::vector<Vec3>> before;
       for (const Body& b : world.bodies) before.push_back(b.x_m);
@@ -754,19 +759,16 @@ TEST_CASE("a body with vertices in no tet: its union is its tets' boxes', not it
     some_body_grown = some_body_grown || (want_union.hi.array() < beyond.array()).all();
     TetHashDetector full(world, settings);
     const std::uint64_t full_work = full.hash_tets(world, pairs);
-    const ReachableEntries want = reachable_entries(world, pairs, settings.cell_size_m);
-    for (const int threads : {0, 1, 2}) {
-      INFO(threads << " threads");
-      TetHashDetector reached = hash_reached(world, pairs, settings, threads, full_work, want);
-      require_same_queries(world, pairs, full, reached);
-      for (const TetHashDetector* detector : {&full, &reached})
+    check_reached(world, pairs, settings, full, full_work, [&](const TetHashDetector& reached,
+                                                               const ReachableEntries&) {
+      for (const TetHashDetector* detector : {static_cast<const TetHashDetector*>(&full), &reached})
         for (std::size_t o = 0; o < world.bodies.size(); ++o) {
           INFO("body " << o);
           const BoxUnion union_o = tet_box_union(world, pairs, o);
           CHECK(detector->body_box(o).lo == union_o.lo);
           CHECK(detector->body_box(o).hi == union_o.hi);
         }
-    }
+    });
   });
   CHECK(some_body_grown);
 }
