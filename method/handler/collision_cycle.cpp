@@ -617,8 +617,26 @@ std::size_t wall_batch_items(double left_ms, double item_ms, std::size_t threads
   return std::clamp(static_cast<std::size_t>(std::min(fits, static_cast<double>(most))), std::min(threads, most), most);
 }
 
-void CollisionCycle::run_batch(std::size_t remaining, const World& world, const Budget& budget,
-                               const WorkerPool::RangeFunction& f) {
+std::size_t batch_chunk(std::size_t size, std::size_t threads, std::size_t max_chunk) {
+  // Chunks are taken as threads come free: a batch's costly items (colliding
+  // points, deep contacts) cluster, and static halves left one thread idle.
+  // A small chunk evens the threads' loads, but each chunk costs an atomic
+  // increment whose cache line crosses between the cores (and, likely, the
+  // threads then work side by side on neighbouring items, each reading lines
+  // the other has just read). At 16 items a chunk, the dog pair's 15,460
+  // point queries (970 chunks) took 1.25-1.33 ms on 2 threads against
+  // 1.05-1.09 ms at 128 (micro_collision_cycle BM_ThreadsPaired/0/0,
+  // ms2_query_points, alternated binaries). Its 1,541 border depths cost
+  // about a microsecond each and keep 16: at 256 (6 chunks) the 2 threads
+  // took longer than one. A quarter of a thread's share, so a budget's
+  // batch of 64 items a thread still splits into 16-item chunks.
+  constexpr std::size_t kLeast = 16, kChunksPerThread = 4;
+  const std::size_t even = size / (kChunksPerThread * std::max<std::size_t>(threads, 1));
+  return std::max<std::size_t>(std::min(std::max(even, kLeast), max_chunk), 1);
+}
+
+void CollisionCycle::run_batch(std::size_t remaining, std::size_t max_chunk, const World& world,
+                               const Budget& budget, const WorkerPool::RangeFunction& f) {
   const std::size_t size = batch_size(remaining, budget);
   m_batch.assign(size, Answer{});
   for (ThreadHits& t : m_thread_hits) t.hits.clear();
@@ -626,11 +644,7 @@ void CollisionCycle::run_batch(std::size_t remaining, const World& world, const 
   m_batch_step = world.step_index;
   const bool timed = budget.kind() == BudgetKind::WallMs;
   const double start_ms = timed ? m_clock() : 0.0;
-  // Chunks taken as threads come free: a batch's costly items (colliding
-  // points, deep contacts) cluster, and static halves left one thread idle.
-  // 16 items: a batch of 64 a thread still splits into 4 chunks a thread.
-  constexpr std::size_t kChunk = 16;
-  m_pool->for_chunks(size, kChunk, f);
+  m_pool->for_chunks(size, batch_chunk(size, static_cast<std::size_t>(m_pool->threads()), max_chunk), f);
   if (!timed || size == 0) return;
   const double item_ms = (m_clock() - start_ms) / static_cast<double>(size);
   double& recent = m_batch_item_ms[static_cast<std::size_t>(cost_stage(m_stage))];
@@ -653,7 +667,7 @@ bool CollisionCycle::depth_batch_allowed(const World& world) {
 }
 
 void CollisionCycle::depth_batch(const World& world, const Budget& budget) {
-  run_batch(m_contacts.size() - m_cursor, world, budget, [&](int part, std::size_t begin, std::size_t end) {
+  const auto depths = [&](int part, std::size_t begin, std::size_t end) {
     SurfaceHash::QueryScratch& scratch = m_surface_scratch[static_cast<std::size_t>(part)];
     for (std::size_t i = begin; i < end; ++i) {
       Contact c = m_contacts[m_batch_begin + i];
@@ -661,11 +675,12 @@ void CollisionCycle::depth_batch(const World& world, const Budget& budget) {
           border_point_depth(world, c, m_contacts, m_lookup, m_surface, scratch, m_surface_margin_m);
       keep_hit(m_batch[i], part, c);
     }
-  });
+  };
+  run_batch(m_contacts.size() - m_cursor, kDepthChunk, world, budget, depths);
 }
 
 void CollisionCycle::query_batch(const World& world, const Budget& budget) {
-  run_batch(m_queries.size() - m_cursor, world, budget, [&](int part, std::size_t begin, std::size_t end) {
+  const auto queries = [&](int part, std::size_t begin, std::size_t end) {
     TetHashDetector::QueryScratch& scratch = m_thread_scratch[static_cast<std::size_t>(part)];
     for (std::size_t i = begin; i < end; ++i) {
       const std::size_t at = m_batch_begin + i;
@@ -673,7 +688,8 @@ void CollisionCycle::query_batch(const World& world, const Budget& budget) {
       const auto hit = m_detector.query_point(world, m_pairs, body, vertex, m_batch[i].work, m_tet_margin_m, scratch);
       if (hit) keep_hit(m_batch[i], part, *hit);
     }
-  });
+  };
+  run_batch(m_queries.size() - m_cursor, kQueryChunk, world, budget, queries);
 }
 
 std::optional<Contact> CollisionCycle::detect(const World& world, std::int32_t body, std::int32_t vertex,

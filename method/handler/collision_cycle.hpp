@@ -314,8 +314,10 @@ class CollisionCycle {
   std::size_t batch_size(std::size_t remaining, const Budget& budget) const;
   /// Starts a batch at the cursor (its size from batch_size(), for this
   /// step) and runs f over it on the pool; under a wall budget, also notes
-  /// what an item took (m_batch_item_ms).
-  void run_batch(std::size_t remaining, const World& world, const Budget& budget, const WorkerPool::RangeFunction& f);
+  /// what an item took (m_batch_item_ms). The pool takes it in chunks of
+  /// batch_chunk(size, threads, max_chunk) items.
+  void run_batch(std::size_t remaining, std::size_t max_chunk, const World& world, const Budget& budget,
+                 const WorkerPool::RangeFunction& f);
   bool depth_batch_allowed(const World& world);
   void depth_batch(const World& world, const Budget& budget);
 
@@ -406,5 +408,14 @@ class CollisionCycle {
 /// `item_ms` each (the stage's recent time per item; <= 0: none measured
 /// yet, then 4 a thread), at least one a thread, at most `most`.
 std::size_t wall_batch_items(double left_ms, double item_ms, std::size_t threads, std::size_t most);
+
+/// The most items a chunk of a batch takes: point queries, mostly a few tens
+/// of nanoseconds each, and border depths, about a microsecond each (dog pair).
+inline constexpr std::size_t kQueryChunk = 128;
+inline constexpr std::size_t kDepthChunk = 16;
+/// How many items the pool's threads take at a time from a batch of `size`
+/// items: a quarter of a thread's share, at least 16 (and at least one), at
+/// most `max_chunk` (which wins over the 16).
+std::size_t batch_chunk(std::size_t size, std::size_t threads, std::size_t max_chunk);
 
 }  // namespace tcb

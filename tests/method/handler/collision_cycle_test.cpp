@@ -338,6 +338,19 @@ TEST_CASE("under a wall budget a batch is sized to the time left", "[cycle][thre
   CHECK(wall_batch_items(1.0, 0.1, 4, 2) == 2);       // the most wins over the threads
 }
 
+TEST_CASE("a batch is taken in chunks of a quarter of a thread's share, within bounds", "[cycle][threads]") {
+  CHECK(batch_chunk(15460, 2, kQueryChunk) == 128);  // the dog pair's queries: capped
+  CHECK(batch_chunk(15460, 2, kDepthChunk) == 16);   // costly items keep small chunks
+  CHECK(batch_chunk(128, 2, kQueryChunk) == 16);     // a budget's batch: 4 chunks a thread
+  CHECK(batch_chunk(800, 2, kQueryChunk) == 100);    // a quarter of each thread's 400
+  CHECK(batch_chunk(800, 4, kQueryChunk) == 50);
+  CHECK(batch_chunk(3, 2, kQueryChunk) == 16);       // never below 16 items (one chunk here)
+  CHECK(batch_chunk(0, 2, kQueryChunk) == 16);
+  CHECK(batch_chunk(800, 0, kQueryChunk) == 128);    // no threads counts as one
+  CHECK(batch_chunk(800, 2, 4) == 4);                // the most wins over the 16
+  CHECK(batch_chunk(800, 2, 0) == 1);                // and a chunk holds at least one item
+}
+
 TEST_CASE("a ticking clock interrupts the tet hashing and resumes it next step", "[cycle][granularity]") {
   const test::TestScene scene = test::collision_scenes()[0].second;
   World world = build_world(scene);
