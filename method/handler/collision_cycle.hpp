@@ -306,6 +306,9 @@ class CollisionCycle {
   void restore_index_order();
   void start_layer_scan();
   bool scan_layer_some(const World& world, std::size_t max_contacts);
+  /// Queues each neighbour of c that the next layer takes (c of the layer
+  /// just finished, with a depth; each neighbour once a scan).
+  void queue_neighbours(const World& world, const Contact& c);
   bool batch_holds(const World& world) const;
   /// Whether the whole HashSurface stage may run at once now (see above),
   /// at the stage's start; `pool` sums its work under a work budget.
@@ -357,6 +360,7 @@ class CollisionCycle {
   std::vector<std::int32_t> m_surface_bodies;                      // bodies whose surface is hashed
   std::size_t m_surface_body = 0;                                  // HashSurface's cursor: body, triangle
   std::vector<std::int32_t> m_layer_items;                         // contacts of the current layer
+  std::vector<std::int32_t> m_layer_sources;  // the layer before it (build_next_layer)
   std::int32_t m_layer = 0;
   std::vector<std::uint32_t> m_layer_mark;  // per contact: the scan that queued it (fine)
   std::uint32_t m_layer_scan = 0;
