@@ -362,7 +362,7 @@ class CollisionCycle {
   std::vector<std::int32_t> m_layer_items;                         // contacts of the current layer
   std::vector<std::int32_t> m_layer_sources;  // the layer before it (build_next_layer)
   std::int32_t m_layer = 0;
-  std::vector<std::uint32_t> m_layer_mark;  // per contact: the scan that queued it (fine)
+  std::vector<std::uint32_t> m_layer_mark;  // per contact: the scan that queued it
   std::uint32_t m_layer_scan = 0;
   std::size_t m_scan_cursor = 0;
   std::vector<Contact> m_contacts;
