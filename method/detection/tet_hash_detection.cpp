@@ -6,6 +6,7 @@
 #include <numeric>
 #include <optional>
 #include <stdexcept>
+#include <string>
 
 #include "method/detection/morton_order.hpp"
 #include "method/geometry/perturbed_predicates.hpp"
@@ -164,8 +165,22 @@ void TetHashDetector::record_hashed_cells(std::uint32_t id) {
   }
 }
 
+void TetHashDetector::check_world(const World& world) const {
+  if (world.bodies.size() + 1 != m_body_vertex_offset.size())
+    throw std::invalid_argument("TetHashDetector: made for " + std::to_string(m_body_vertex_offset.size() - 1) +
+                                " bodies, given a world of " + std::to_string(world.bodies.size()));
+  for (std::size_t b = 0; b < world.bodies.size(); ++b) {
+    const std::size_t vertices = m_body_vertex_offset[b + 1] - m_body_vertex_offset[b];
+    if (world.bodies[b].x_m.size() != vertices)
+      throw std::invalid_argument("TetHashDetector: body " + std::to_string(b) + " has " +
+                                  std::to_string(world.bodies[b].x_m.size()) + " positions, its mesh " +
+                                  std::to_string(vertices) + " vertices");
+  }
+}
+
 std::uint64_t TetHashDetector::hash_tets(const World& world, const CollisionPairs& pairs, WorkerPool* pool,
                                          bool queries_at_these_positions) {
+  check_world(world);
   begin_hash();
   // The box around every vertex that may query a body's tets (the vertices
   // of its partners), when the table serves these positions only; a body
@@ -484,6 +499,7 @@ void TetHashDetector::begin_refresh() {
 template <typename Visit>
 std::uint64_t TetHashDetector::walk_tets(const World& world, const CollisionPairs& pairs, bool movable_only,
                                          std::size_t max_tets, bool& done, Visit&& visit) {
+  if (m_hash_body == 0 && m_hash_tet == 0) check_world(world);  // once a walk, not every piece
   std::uint64_t work = 0;
   std::size_t visited = 0;
   for (; m_hash_body < world.bodies.size(); ++m_hash_body, m_hash_tet = 0) {
@@ -539,6 +555,7 @@ std::uint64_t TetHashDetector::refresh_some_tets(const World& world, const Colli
 }
 
 std::uint64_t TetHashDetector::refresh_tets(const World& world, const CollisionPairs& pairs, WorkerPool* pool) {
+  check_world(world);
   begin_refresh();  // from the first tet, whatever a refresh before left
   // walk_tets()'s choice of tets, by slot: slots run body by body, as the
   // walk does (within a body in another order, which nothing here sees).

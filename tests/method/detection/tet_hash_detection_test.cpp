@@ -374,6 +374,36 @@ TEST_CASE("a tet whose box reaches the next cell's border has left its cells; on
   }
 }
 
+TEST_CASE("a world whose bodies or position counts differ from the detector's meshes is refused, never hashed",
+          "[detection]") {
+  // The tag pass writes a cell a position into arrays laid out for the
+  // meshes' vertices: a body with more positions would write past them.
+  const test::TestScene scene = test::collision_scenes()[0].second;  // two overlapping boxes
+  const World world = build_world(scene);
+  const CollisionSettings settings = test::settings_of(world, scene);
+  const CollisionPairs pairs(world);
+  TetHashDetector detector(world, settings.detection);
+  detector.enable_refresh();
+  CHECK_NOTHROW(detector.hash_tets(world, pairs));
+  for (const int extra : {1, -1}) {
+    INFO("positions " << extra);
+    World odd = clone_world(world);
+    if (extra > 0) odd.bodies[1].x_m.push_back(odd.bodies[1].x_m.back());
+    else odd.bodies[1].x_m.pop_back();
+    CHECK_THROWS_AS(detector.hash_tets(odd, pairs), std::invalid_argument);
+    CHECK_THROWS_AS(detector.hash_tets(odd, pairs, nullptr, true), std::invalid_argument);
+    CHECK_THROWS_AS(detector.refresh_tets(odd, pairs, nullptr), std::invalid_argument);
+    detector.begin_hash();
+    bool done = false;
+    CHECK_THROWS_AS(detector.hash_some_tets(odd, pairs, 1, done), std::invalid_argument);
+  }
+  World fewer = clone_world(world);
+  fewer.bodies.pop_back();
+  CHECK_THROWS_AS(detector.hash_tets(fewer, pairs), std::invalid_argument);
+  CHECK_NOTHROW(detector.hash_tets(world, pairs));  // the detector still serves its own world
+  CHECK(query_all(world, pairs, &detector) == query_all(world, pairs, nullptr));
+}
+
 TEST_CASE("a new hash drops the overflow; fixed passive bodies are never revisited", "[detection][rehash]") {
   const test::TestScene scene = test::collision_scenes()[3].second;  // a passive floor and a cube
   World world = build_world(scene);
