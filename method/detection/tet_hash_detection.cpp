@@ -175,6 +175,13 @@ void TetHashDetector::check_world(const World& world) const {
       throw std::invalid_argument("TetHashDetector: body " + std::to_string(b) + " has " +
                                   std::to_string(world.bodies[b].x_m.size()) + " positions, its mesh " +
                                   std::to_string(vertices) + " vertices");
+    // The walks count a body's tets from its mesh and find their slots in
+    // the detector's layout: another mesh's count would reach past it.
+    const std::size_t tets = m_body_tet_offset[b + 1] - m_body_tet_offset[b];
+    if (world.bodies[b].mesh->tet_count() != tets)
+      throw std::invalid_argument("TetHashDetector: body " + std::to_string(b) + " has a mesh of " +
+                                  std::to_string(world.bodies[b].mesh->tet_count()) + " tets, made for " +
+                                  std::to_string(tets));
   }
 }
 

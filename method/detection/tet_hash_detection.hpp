@@ -95,9 +95,10 @@ struct DetectionSettings {
 class TetHashDetector {
  public:
   /// Every later call takes a world of the same bodies and meshes, each
-  /// body with one position a mesh vertex: hashing a world whose body count
-  /// or position counts differ throws std::invalid_argument (its per-vertex
-  /// arrays are laid out for these meshes).
+  /// body with one position a mesh vertex: hashing a world whose body
+  /// count, position counts or meshes' tet counts differ throws
+  /// std::invalid_argument (its per-vertex and per-tet arrays are laid out
+  /// for these meshes; a different mesh of the same counts is not detected).
   TetHashDetector(const World& world, const DetectionSettings& settings);
 
   /// Stage 1: hashes all tets at the current positions; returns work units.
@@ -246,9 +247,9 @@ class TetHashDetector {
   void record_hashed_cells(std::uint32_t id);
   /// Whether tet `id`'s stored box stays within the cells it was hashed in.
   bool within_hashed_cells(std::uint32_t id) const;
-  /// Throws std::invalid_argument unless `world` has the bodies, and each
-  /// body as many positions as its mesh has vertices, that the detector was
-  /// made for (class comment). At the start of each hash and refresh.
+  /// Throws std::invalid_argument unless `world` has the bodies, each with
+  /// the position and tet counts, that the detector was made for
+  /// (constructor comment). At the start of each hash, refresh and walk.
   void check_world(const World& world) const;
   SpatialHash m_hash;
   SpatialHash m_overflow;                             // refresh only; allocated by enable_refresh()

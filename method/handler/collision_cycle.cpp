@@ -640,11 +640,11 @@ std::size_t batch_chunk(std::size_t size, std::size_t threads, std::size_t max_c
   // increment whose cache line crosses between the cores (and, likely, the
   // threads then work side by side on neighbouring items, each reading lines
   // the other has just read). At 16 items a chunk, the dog pair's 15,460
-  // point queries (970 chunks) took 1.25-1.33 ms on 2 threads against
-  // 1.05-1.09 ms at 128 (micro_collision_cycle BM_ThreadsPaired/0/0,
-  // ms2_query_points, alternated binaries). Its 1,541 border depths cost
-  // about a microsecond each and keep 16: at 256 (6 chunks) the 2 threads
-  // took longer than one. A quarter of a thread's share, so a budget's
+  // point queries (967 chunks) took 1.20-1.36 ms on 2 threads against
+  // 1.07-1.27 ms with this rule (micro_collision_cycle BM_ThreadsPaired/0/0,
+  // ms2_query_points, three rounds of alternated binaries). Its 1,541
+  // border depths cost about a microsecond each and keep 16: at 256 (7
+  // chunks) the 2 threads took longer than one. A quarter of a thread's share, so a budget's
   // batch of 64 items a thread still splits into 16-item chunks.
   constexpr std::size_t kLeast = 16, kChunksPerThread = 4;
   const std::size_t even = size / (kChunksPerThread * std::max<std::size_t>(threads, 1));

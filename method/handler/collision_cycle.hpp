@@ -23,8 +23,10 @@
 ///                a point's edges may then span steps, each read at the
 ///                positions of its step, as the tets of a fine hash are)
 ///   Propagate    one propagated point per task, layer by layer; each layer's
-///                points are found by one task over all contacts (the paper's
-///                granularity) or by BuildLayer tasks (fine)
+///                points are found in the task that ends the layer before
+///                (the paper's granularity: layer 1 from every contact, a
+///                later one from the layer before's points) or by BuildLayer
+///                tasks over every contact (fine)
 ///   BuildLayer   the next layer's points, layer_scan_per_task contacts a task
 ///                (fine only; a layer's points then come in the order found,
 ///                which gives the same depths: no point of a layer reads another)
@@ -360,7 +362,7 @@ class CollisionCycle {
   std::vector<std::int32_t> m_surface_bodies;                      // bodies whose surface is hashed
   std::size_t m_surface_body = 0;                                  // HashSurface's cursor: body, triangle
   std::vector<std::int32_t> m_layer_items;                         // contacts of the current layer
-  std::vector<std::int32_t> m_layer_sources;  // the layer before it (build_next_layer)
+  std::vector<std::int32_t> m_layer_sources;                       // the layer before it (build_next_layer)
   std::int32_t m_layer = 0;
   std::vector<std::uint32_t> m_layer_mark;  // per contact: the scan that queued it
   std::uint32_t m_layer_scan = 0;

@@ -374,34 +374,59 @@ TEST_CASE("a tet whose box reaches the next cell's border has left its cells; on
   }
 }
 
-TEST_CASE("a world whose bodies or position counts differ from the detector's meshes is refused, never hashed",
+TEST_CASE("a world whose bodies, position counts or tet counts differ from the detector's meshes is refused",
           "[detection]") {
   // The tag pass writes a cell a position into arrays laid out for the
-  // meshes' vertices: a body with more positions would write past them.
-  const test::TestScene scene = test::collision_scenes()[0].second;  // two overlapping boxes
+  // meshes' vertices (a body with more positions would write past them),
+  // and the walks find a body's tets in the detector's layout.
+  const test::TestScene scene = test::collision_scenes()[3].second;  // a passive floor and a cube
   const World world = build_world(scene);
   const CollisionSettings settings = test::settings_of(world, scene);
   const CollisionPairs pairs(world);
-  TetHashDetector detector(world, settings.detection);
-  detector.enable_refresh();
-  CHECK_NOTHROW(detector.hash_tets(world, pairs));
+  TetHashDetector tagged(world, settings.detection);  // hashes for its own positions, with the tag pass
+  TetHashDetector kept(world, settings.detection);    // keeps its cells for refreshes (no tags)
+  kept.enable_refresh();
+  tagged.hash_tets(world, pairs, nullptr, true);
+  REQUIRE(tagged.cells_told_apart());  // the tag pass ran: the path the check guards
+  kept.hash_tets(world, pairs);
+  const auto refused = [&](const World& odd) {
+    CHECK_THROWS_AS(tagged.hash_tets(odd, pairs, nullptr, true), std::invalid_argument);
+    CHECK_THROWS_AS(kept.hash_tets(odd, pairs), std::invalid_argument);
+    CHECK_THROWS_AS(kept.refresh_tets(odd, pairs, nullptr), std::invalid_argument);
+    bool done = false;
+    kept.begin_refresh();
+    CHECK_THROWS_AS(kept.refresh_some_tets(odd, pairs, 1, done), std::invalid_argument);
+    kept.begin_hash();
+    CHECK_THROWS_AS(kept.hash_some_tets(odd, pairs, 1, done), std::invalid_argument);
+  };
   for (const int extra : {1, -1}) {
     INFO("positions " << extra);
     World odd = clone_world(world);
     if (extra > 0) odd.bodies[1].x_m.push_back(odd.bodies[1].x_m.back());
     else odd.bodies[1].x_m.pop_back();
-    CHECK_THROWS_AS(detector.hash_tets(odd, pairs), std::invalid_argument);
-    CHECK_THROWS_AS(detector.hash_tets(odd, pairs, nullptr, true), std::invalid_argument);
-    CHECK_THROWS_AS(detector.refresh_tets(odd, pairs, nullptr), std::invalid_argument);
-    detector.begin_hash();
-    bool done = false;
-    CHECK_THROWS_AS(detector.hash_some_tets(odd, pairs, 1, done), std::invalid_argument);
+    refused(odd);
   }
-  World fewer = clone_world(world);
-  fewer.bodies.pop_back();
-  CHECK_THROWS_AS(detector.hash_tets(fewer, pairs), std::invalid_argument);
-  CHECK_NOTHROW(detector.hash_tets(world, pairs));  // the detector still serves its own world
-  CHECK(query_all(world, pairs, &detector) == query_all(world, pairs, nullptr));
+  {
+    INFO("one tet fewer, the same vertices");
+    World odd = clone_world(world);
+    auto mesh = std::make_shared<TetMesh>(*odd.bodies[1].mesh);
+    mesh->tets.pop_back();
+    mesh->is_degenerate.pop_back();
+    odd.bodies[1].mesh = mesh;
+    refused(odd);
+  }
+  {
+    INFO("one body fewer");
+    World odd = clone_world(world);
+    odd.bodies.pop_back();
+    refused(odd);
+  }
+  // Both still serve their own world, each query as brute force answers it.
+  tagged.hash_tets(world, pairs, nullptr, true);
+  kept.hash_tets(world, pairs);
+  const Points truth = query_all(world, pairs, nullptr);
+  CHECK(query_all(world, pairs, &tagged) == truth);
+  CHECK(query_all(world, pairs, &kept) == truth);
 }
 
 TEST_CASE("a new hash drops the overflow; fixed passive bodies are never revisited", "[detection][rehash]") {

@@ -98,29 +98,38 @@ TEST_CASE("fine tasks find exactly the paper's contacts and depths, and brute fo
 
 TEST_CASE("the paper's layers, each grown from the last layer's points, are a scan of every contact's layers",
           "[cycle][granularity]") {
-  // A fine cube half inside a coarse one: its points inside lie up to six
-  // cells from the border, so depths propagate over several layers. The
-  // paper's granularity scans only the last layer's points for the next
-  // layer; a fine layer scan (BuildLayer) tests every contact, in pieces of
-  // one or all. Every field of every contact, the layer too, must agree.
+  // A fine cube three quarters inside a coarse one: its points inside lie
+  // up to six cells from the border, so depths propagate over several
+  // layers. The paper's granularity scans only the last layer's points for
+  // the next layer; a fine layer scan (BuildLayer) tests every contact, in
+  // pieces of one or all. Every field of every contact, the layer too, must
+  // agree, whether the cycle runs in one call or one task a call (each
+  // layer then built in a call of its own, after the last one's tasks).
   const test::TestScene scene = test::scene_of({{"coarse", "box:size=0.4x0.4x0.4,cells=4x4x4"},
                                                 {"fine", "box:size=0.2x0.2x0.2,cells=8x8x8", Vec3(0.15, 0.0, 0.0)}});
-  const auto contacts_of = [&](TaskGranularity granularity) {
+  const auto contacts_of = [&](TaskGranularity granularity, bool one_task_a_call) {
     World w = build_world(scene);  // never stepped: positions stay fixed
     CollisionCycle cycle(w, test::settings_of(w, scene), DetectionMode::SpatialHash, {.granularity = granularity});
     cycle.begin(w);
-    Budget unlimited = Budget::unlimited();
-    REQUIRE(cycle.advance(w, unlimited));
+    int calls = 0;
+    for (bool done = false; !done; ++calls) {
+      Budget budget = one_task_a_call ? Budget::work_units(0) : Budget::unlimited();
+      done = cycle.advance(w, budget);
+      REQUIRE(calls < 1000000);
+    }
+    CHECK((calls > 1) == one_task_a_call);
     return cycle.contacts();
   };
-  const std::vector<Contact> paper = contacts_of({});
+  const std::vector<Contact> paper = contacts_of({}, false);
   std::int32_t deepest = 0;
   for (const Contact& c : paper) deepest = std::max(deepest, c.layer);
   REQUIRE(deepest >= 4);  // layers past the first, grown from a layer's points alone
-  for (const std::size_t scan : {std::size_t{1}, std::size_t{1} << 30}) {
-    INFO("scan " << scan);
-    CHECK(same_contacts(contacts_of({std::size_t{1} << 30, 2048, scan}), paper));
-  }
+  CHECK(same_contacts(contacts_of({}, true), paper));
+  for (const std::size_t scan : {std::size_t{1}, std::size_t{1} << 30})
+    for (const bool one_task_a_call : {false, true}) {
+      INFO("scan " << scan << ", one task a call " << one_task_a_call);
+      CHECK(same_contacts(contacts_of({std::size_t{1} << 30, 2048, scan}, one_task_a_call), paper));
+    }
 }
 
 TEST_CASE("threads change neither contacts, depths nor any task's work, one task a call or all at once",
