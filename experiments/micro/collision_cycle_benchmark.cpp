@@ -32,8 +32,9 @@
 // along a Morton curve against the file's order), BM_HashFloorPaired the
 // cycle's tet hashing beside a bare dense-grid build, BM_PointGridPaired its
 // hashing and queries beside a bare grid of the points, BM_SurfaceWholePaired
-// the surface hashed one triangle a task against as a whole: see their
-// comments.
+// the surface hashed one triangle a task against as a whole, BM_TwinCycles
+// two independent one-thread cycles at once against one after the other
+// (what the machine's second core gives this work): see their comments.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -47,12 +48,14 @@
 #include <vector>
 
 #include "baselines/registry.hpp"
+#include "experiments/run/thread_clock.hpp"
 #include "experiments/scene/scene_file.hpp"
 #include "method/detection/morton_order.hpp"
 #include "method/geometry/perturbed_predicates.hpp"
 #include "method/handler/collision_cycle.hpp"
 #include "sim/mesh/curve_numbering.hpp"
 #include "sim/mesh/medit_io.hpp"
+#include "sim/parallel/worker_pool.hpp"
 
 namespace {
 
@@ -420,6 +423,106 @@ void BM_ThreadsPaired(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_ThreadsPaired)->Args({0, 0})->Args({1, 0})->Args({2, 0})->Args({0, 125})->Unit(benchmark::kMillisecond);
+
+// What this machine gives a second thread on this very work, with none of
+// a split's own costs: BM_TwinCycles/<scene> (scenes as in
+// BM_ThreadsPaired) runs two independent one-thread cycles ("twins"), each
+// on its own copy of the world. Every iteration runs them one after the
+// other on this thread pinned to the first allowed CPU, then so on the
+// second ("alone"), and at the same time on a pool's two threads
+// ("beside"); which of the three goes first rotates with the iteration.
+// Beside, no thread waits for the other and nothing is serial, so
+// throughput_2t (cycles a millisecond beside, each twin's rate added up,
+// over the mean of the two CPUs' rates alone) is what the second vCPU adds
+// to this work when the two only share the machine (caches beyond L2,
+// memory, the hypervisor's placement): an estimate of how far a split of
+// one cycle can get here, not a bound. The twins hold two sets of tables
+// where a split cycle's threads share one (more cache pressure than a split
+// meets), while a split cycle pays for its serial stages and waits, and
+// its threads read what the other has just written (the tables both built,
+// the contacts this thread listed), which the twins never do and this
+// machine charges for (micro_machine_scaling BM_Handover). cpu_ratio: the second CPU's time alone over the
+// first's; far from 1, the vCPUs ran at different speeds in that run (a
+// neighbour on the host), and no paired 1-against-2-thread ratio of the
+// same minutes means much. slowdown_<stage>: a stage's time a cycle beside
+// over alone (1 = unhurt by the other core). Stops with an error if the
+// twins' contacts differ or two CPUs cannot be had.
+void BM_TwinCycles(benchmark::State& state) {
+  const bool dogs = state.range(0) == 0;
+  if (dogs && !have_dog_mesh(state)) return;
+  const std::vector<int> cpus = allowed_cpus();
+  if (cpus.size() < 2) {
+    state.SkipWithError("needs two CPUs");
+    return;
+  }
+  Fixture f = dogs ? dog_pair()
+                   : (state.range(0) == 2 ? Fixture{plates20_settled().scene, clone_world(plates20_settled().world)}
+                                          : plates20());
+  World twin = clone_world(f.world);
+  CollisionSettings one = resolve_collision_settings(f.world, f.scene.collision, f.scene.world.dt_s);
+  one.threads = 1;
+  CollisionCycle cycles[2] = {CollisionCycle(f.world, one, DetectionMode::SpatialHash),
+                              CollisionCycle(twin, one, DetectionMode::SpatialHash)};
+  World* worlds[2] = {&f.world, &twin};
+  WorkerPool pool(2);
+  StageCosts alone, beside[2];  // stage times summed over the cycles run so (beside: a twin's own, added up after)
+  const auto run = [&](int k, StageCosts& sum) {
+    cycles[k].begin(*worlds[k]);
+    cycles[k].start_step_costs();
+    Budget unlimited = Budget::unlimited();
+    cycles[k].advance(*worlds[k], unlimited);
+    for (std::size_t st = 0; st < kCostStages; ++st) sum.ms[st] += cycles[k].step_costs().ms[st];
+  };
+  using Clock = std::chrono::steady_clock;
+  const auto seconds_since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
+  double alone_s[2] = {0.0, 0.0};  // both twins in turn, pinned to cpus[0] and to cpus[1]
+  double twin_s[2] = {0.0, 0.0};   // each twin's own time beside the other
+  std::int64_t calls = 0;
+  for (auto _ : state) {
+    for (int k = 0; k < 3; ++k) {
+      const int what = static_cast<int>((calls + k) % 3);  // 0, 1: alone on that CPU; 2: beside
+      if (what == 2) {
+        pool.for_ranges(2, [&](int part, std::size_t, std::size_t) {
+          const auto start = Clock::now();
+          run(part, beside[part]);
+          twin_s[part] += seconds_since(start);
+        });
+        continue;
+      }
+      const ScopedPin pin(cpus[static_cast<std::size_t>(what)]);
+      if (!pin.error().empty()) {
+        state.SkipWithError(pin.error().c_str());
+        return;
+      }
+      const auto start = Clock::now();
+      run(0, alone);
+      run(1, alone);
+      alone_s[what] += seconds_since(start);
+    }
+    ++calls;
+    if (cycles[0].contacts().size() != cycles[1].contacts().size()) {
+      state.SkipWithError("the twin cycles found different contacts");
+      return;
+    }
+  }
+  const double n = static_cast<double>(std::max<std::int64_t>(calls, 1));
+  // Rates in cycles a second: alone, the mean of the two CPUs'; beside, the twins' added up.
+  const double alone_rate = 0.5 * (2.0 * n / alone_s[0] + 2.0 * n / alone_s[1]);
+  const double beside_rate = n / twin_s[0] + n / twin_s[1];
+  state.counters["throughput_2t"] = beside_rate / alone_rate;
+  state.counters["cpu_ratio"] = alone_s[1] / alone_s[0];
+  state.counters["ms_alone_cpu0"] = 1e3 * alone_s[0] / (2.0 * n);  // a cycle
+  state.counters["ms_alone_cpu1"] = 1e3 * alone_s[1] / (2.0 * n);
+  state.counters["ms_beside"] = 1e3 * (twin_s[0] + twin_s[1]) / (2.0 * n);  // a cycle, the twins' mean
+  state.counters["colliding"] = static_cast<double>(cycles[0].contacts().size());
+  for (std::size_t st = 0; st < kCostStages; ++st) {
+    if (!(alone.ms[st] > 0.0) || static_cast<CostStage>(st) == CostStage::Apply) continue;
+    // Per cycle: alone ran four cycles an iteration, beside two.
+    const double beside_ms = (beside[0].ms[st] + beside[1].ms[st]) / 2.0, alone_ms = alone.ms[st] / 4.0;
+    state.counters["slowdown_" + std::string(cost_stage_name(static_cast<CostStage>(st)))] = beside_ms / alone_ms;
+  }
+}
+BENCHMARK(BM_TwinCycles)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 
 // What hashing the surface as a whole on one thread buys, measured side by
 // side: BM_SurfaceWholePaired/<scene> (0 the dog pair, 2 plates20 after 300

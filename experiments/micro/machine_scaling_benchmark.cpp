@@ -28,6 +28,9 @@
 //   BM_Gather/S       independent random loads from the same nodes: what
 //                     overlapping misses (prefetching, several queries in
 //                     flight) could reach.
+//   BM_Handover/S     not a ratio of thread counts: reading lines the other
+//                     core has just written against lines this core wrote
+//                     (see its comment).
 #include <benchmark/benchmark.h>
 
 #include <chrono>
@@ -137,6 +140,50 @@ void BM_Gather(benchmark::State& state) {
   });
 }
 
+// Reading what the other core has just written, against what this core
+// has: a split cycle's threads build one table together and then both read
+// all of it (the point queries), so about half of what each reads was last
+// written by the other core, which two independent cycles side by side
+// (micro_collision_cycle BM_TwinCycles) never meet. BM_Handover/S: S KiB
+// of 64-byte lines, each written (a new value) by this thread or by the
+// pool's other one, alternating with the iteration, and then read by this
+// thread in a scattered order (independent loads, as BM_Gather's); only
+// the read is timed. read_ratio: the read after the other core's writes
+// over the read after this core's; ns_per_line_own and ns_per_line_other.
+struct alignas(64) Line {
+  std::uint64_t value = 0;
+};
+
+void BM_Handover(benchmark::State& state) {
+  std::vector<Line> lines(static_cast<std::size_t>(state.range(0)) * 1024 / sizeof(Line));
+  WorkerPool two(2);
+  Sink sink;
+  double own_s = 0.0, other_s = 0.0;
+  std::uint64_t stamp = 0;  // the value written: new at every write
+  std::int64_t calls = 0;
+  for (auto _ : state) {
+    for (int k = 0; k < 2; ++k) {
+      const bool other = (calls + k) % 2 == 0;  // which goes first alternates
+      ++stamp;
+      two.for_ranges(2, [&](int part, std::size_t, std::size_t) {
+        if ((part == 1) != other) return;  // part 0 is this thread
+        for (Line& line : lines) line.value = stamp;
+      });
+      const auto start = std::chrono::steady_clock::now();
+      std::uint64_t sum = 0;
+      for (std::size_t i = 0; i < lines.size(); ++i) sum += lines[(i * 0x9E3779B97F4A7C15ULL >> 20) % lines.size()].value;
+      (other ? other_s : own_s) += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      sink.bits += sum;
+      benchmark::DoNotOptimize(sink.bits);
+    }
+    ++calls;
+  }
+  const double reads = static_cast<double>(state.iterations()) * static_cast<double>(lines.size());
+  state.counters["read_ratio"] = own_s > 0.0 ? other_s / own_s : 0.0;
+  state.counters["ns_per_line_own"] = 1e9 * own_s / reads;
+  state.counters["ns_per_line_other"] = 1e9 * other_s / reads;
+}
+
 // Working sets: within L2 (1 MiB), the collision cycle's on the dog pair
 // (boxes, tets, table and positions: about 8 MiB, 16 with the overflow),
 // and beyond the last-level cache (512 MiB). The chase also at 2, 4 and 8
@@ -156,6 +203,7 @@ BENCHMARK(BM_Chase)
     ->Arg(512 * 1024)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Gather)->Arg(1024)->Arg(16 * 1024)->Arg(512 * 1024)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Handover)->Arg(256)->Arg(1024)->Arg(4 * 1024)->Arg(16 * 1024)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
