@@ -45,6 +45,7 @@
 #include <initializer_list>
 #include <set>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "baselines/registry.hpp"
@@ -55,6 +56,7 @@
 #include "method/handler/collision_cycle.hpp"
 #include "sim/mesh/curve_numbering.hpp"
 #include "sim/mesh/medit_io.hpp"
+#include "sim/parallel/core_handover.hpp"
 #include "sim/parallel/worker_pool.hpp"
 
 namespace {
@@ -382,7 +384,9 @@ struct SideBySide {
 // 1.3-2x between minutes, weighs on both alike. speedup_2t: the one-thread
 // cycles' time over the two-thread cycles' (sums over the iterations), and
 // speedup_<stage> the same for each stage (the cycle's stage clock); ms_1t,
-// ms_2t per cycle.
+// ms_2t per cycle. handover_before and handover_after: the vCPUs' handover
+// ratio (probe_handover_ratio) before and after the timed loop; the
+// speed-up depends on it (core_handover.hpp).
 // micro_machine_scaling gives the machine's own ratio for kinds of work
 // beside it. Stops with an error if the two cycles' contacts differ.
 void BM_ThreadsPaired(benchmark::State& state) {
@@ -402,9 +406,16 @@ void BM_ThreadsPaired(benchmark::State& state) {
   CollisionCycle* both[2] = {&cycles[0], &cycles[1]};
   World* worlds[2] = {&f.world, &f.world};
   SideBySide pair;  // 0: one thread, 1: two
+  // The vCPUs' placement before and after (sim/parallel/core_handover.hpp):
+  // near 1, the cores hand each other lines as cheaply as they keep their
+  // own; 2 and more, they do not, and the split cycle loses to it. 0: not
+  // measured (fewer than two CPUs, or both threads ran on one).
+  const auto handover_ratio = [] { return probe_handover_ratio().value_or(0.0); };
+  state.counters["handover_before"] = handover_ratio();
   if (!pair.loop(state, both, worlds, move, [&](std::int64_t call) { move_between_cycles(f.world, moving, call); },
                  "the 1- and 2-thread cycles found different contacts"))
     return;
+  state.counters["handover_after"] = handover_ratio();
   state.counters["speedup_2t"] = pair.seconds[1] > 0.0 ? pair.seconds[0] / pair.seconds[1] : 0.0;
   state.counters["ms_1t"] = pair.ms_per_call(0);
   state.counters["ms_2t"] = pair.ms_per_call(1);
@@ -427,26 +438,32 @@ BENCHMARK(BM_ThreadsPaired)->Args({0, 0})->Args({1, 0})->Args({2, 0})->Args({0, 
 // What this machine gives a second thread on this very work, with none of
 // a split's own costs: BM_TwinCycles/<scene> (scenes as in
 // BM_ThreadsPaired) runs two independent one-thread cycles ("twins"), each
-// on its own copy of the world. Every iteration runs them one after the
-// other on this thread pinned to the first allowed CPU, then so on the
-// second ("alone"), and at the same time on a pool's two threads
-// ("beside"); which of the three goes first rotates with the iteration.
-// Beside, no thread waits for the other and nothing is serial, so
-// throughput_2t (cycles a millisecond beside, each twin's rate added up,
+// on its own copy of the world, in three ways an iteration, which of them
+// first rotating with the iteration: one twin after the other on this
+// thread pinned to the first allowed CPU, the same pinned to the second
+// ("alone"), and both at once on a pool's two threads ("beside", timed from
+// the hand-off until both are done; then an untimed pause of twice the
+// pool's poll, so its worker's polling does not run beside the next
+// alone pair). Beside, no thread waits for the other and nothing is
+// serial, so throughput_2t (each twin's cycles a second beside, added up,
 // over the mean of the two CPUs' rates alone) is what the second vCPU adds
 // to this work when the two only share the machine (caches beyond L2,
 // memory, the hypervisor's placement): an estimate of how far a split of
-// one cycle can get here, not a bound. The twins hold two sets of tables
-// where a split cycle's threads share one (more cache pressure than a split
-// meets), while a split cycle pays for its serial stages and waits, and
-// its threads read what the other has just written (the tables both built,
-// the contacts this thread listed), which the twins never do and this
-// machine charges for (micro_machine_scaling BM_Handover). cpu_ratio: the second CPU's time alone over the
-// first's; far from 1, the vCPUs ran at different speeds in that run (a
-// neighbour on the host), and no paired 1-against-2-thread ratio of the
-// same minutes means much. slowdown_<stage>: a stage's time a cycle beside
-// over alone (1 = unhurt by the other core). Stops with an error if the
-// twins' contacts differ or two CPUs cannot be had.
+// one cycle can get here, not a bound. throughput_2t_wall counts the pair
+// done only when the later twin is (two cycles a section): lower where one
+// vCPU runs slower, which a split's chunks taken as threads come free
+// would partly even out, and by the worker's start (about 0.1 ms). The
+// twins hold two sets of tables where a split cycle's threads share one
+// (more cache pressure than a split meets), while a split cycle pays for
+// its serial stages and waits, and its threads read what the other has
+// just written (the tables both built, the contacts this thread
+// listed), which the twins never do and this machine may charge for
+// (sim/parallel/core_handover.hpp). cpu_ratio: the second CPU's time alone
+// over the first's; far from 1, the vCPUs ran at different speeds in that
+// run (a neighbour on the host), and no paired 1-against-2-thread ratio of
+// the same minutes means much. slowdown_<stage>: a stage's time a cycle
+// beside over alone (1 = unhurt by the other core). Stops with an error if
+// the twins' contact counts differ or two CPUs cannot be had.
 void BM_TwinCycles(benchmark::State& state) {
   const bool dogs = state.range(0) == 0;
   if (dogs && !have_dog_mesh(state)) return;
@@ -465,7 +482,8 @@ void BM_TwinCycles(benchmark::State& state) {
                               CollisionCycle(twin, one, DetectionMode::SpatialHash)};
   World* worlds[2] = {&f.world, &twin};
   WorkerPool pool(2);
-  StageCosts alone, beside[2];  // stage times summed over the cycles run so (beside: a twin's own, added up after)
+  // Stage times summed over the cycles run so (beside: a twin's own, added up after).
+  StageCosts alone, beside[2];
   const auto run = [&](int k, StageCosts& sum) {
     cycles[k].begin(*worlds[k]);
     cycles[k].start_step_costs();
@@ -474,19 +492,27 @@ void BM_TwinCycles(benchmark::State& state) {
     for (std::size_t st = 0; st < kCostStages; ++st) sum.ms[st] += cycles[k].step_costs().ms[st];
   };
   using Clock = std::chrono::steady_clock;
-  const auto seconds_since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
+  const auto seconds_since = [](Clock::time_point t) {
+    return std::chrono::duration<double>(Clock::now() - t).count();
+  };
   double alone_s[2] = {0.0, 0.0};  // both twins in turn, pinned to cpus[0] and to cpus[1]
+  double beside_s = 0.0;           // both twins at once, until the later is done
   double twin_s[2] = {0.0, 0.0};   // each twin's own time beside the other
   std::int64_t calls = 0;
   for (auto _ : state) {
     for (int k = 0; k < 3; ++k) {
       const int what = static_cast<int>((calls + k) % 3);  // 0, 1: alone on that CPU; 2: beside
       if (what == 2) {
+        const auto start = Clock::now();
         pool.for_ranges(2, [&](int part, std::size_t, std::size_t) {
-          const auto start = Clock::now();
+          const auto twin_start = Clock::now();
           run(part, beside[part]);
-          twin_s[part] += seconds_since(start);
+          twin_s[part] += seconds_since(twin_start);
         });
+        beside_s += seconds_since(start);
+        state.PauseTiming();
+        std::this_thread::sleep_for(std::chrono::microseconds(2 * WorkerPool::poll_us()));
+        state.ResumeTiming();
         continue;
       }
       const ScopedPin pin(cpus[static_cast<std::size_t>(what)]);
@@ -501,19 +527,20 @@ void BM_TwinCycles(benchmark::State& state) {
     }
     ++calls;
     if (cycles[0].contacts().size() != cycles[1].contacts().size()) {
-      state.SkipWithError("the twin cycles found different contacts");
+      state.SkipWithError("the twin cycles found different contact counts");
       return;
     }
   }
   const double n = static_cast<double>(std::max<std::int64_t>(calls, 1));
-  // Rates in cycles a second: alone, the mean of the two CPUs'; beside, the twins' added up.
+  // Rates in cycles a second: alone, the mean of the two CPUs'; beside, the
+  // twins' added up, or two cycles a section.
   const double alone_rate = 0.5 * (2.0 * n / alone_s[0] + 2.0 * n / alone_s[1]);
-  const double beside_rate = n / twin_s[0] + n / twin_s[1];
-  state.counters["throughput_2t"] = beside_rate / alone_rate;
+  state.counters["throughput_2t"] = (n / twin_s[0] + n / twin_s[1]) / alone_rate;
+  state.counters["throughput_2t_wall"] = 2.0 * n / beside_s / alone_rate;
   state.counters["cpu_ratio"] = alone_s[1] / alone_s[0];
   state.counters["ms_alone_cpu0"] = 1e3 * alone_s[0] / (2.0 * n);  // a cycle
   state.counters["ms_alone_cpu1"] = 1e3 * alone_s[1] / (2.0 * n);
-  state.counters["ms_beside"] = 1e3 * (twin_s[0] + twin_s[1]) / (2.0 * n);  // a cycle, the twins' mean
+  state.counters["ms_beside"] = 1e3 * beside_s / n;  // a section: two cycles at once
   state.counters["colliding"] = static_cast<double>(cycles[0].contacts().size());
   for (std::size_t st = 0; st < kCostStages; ++st) {
     if (!(alone.ms[st] > 0.0) || static_cast<CostStage>(st) == CostStage::Apply) continue;

@@ -33,12 +33,14 @@
 //                     (see its comment).
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <numeric>
 #include <random>
 #include <vector>
 
+#include "sim/parallel/core_handover.hpp"
 #include "sim/parallel/worker_pool.hpp"
 
 namespace {
@@ -141,47 +143,32 @@ void BM_Gather(benchmark::State& state) {
 }
 
 // Reading what the other core has just written, against what this core
-// has: a split cycle's threads build one table together and then both read
-// all of it (the point queries), so about half of what each reads was last
-// written by the other core, which two independent cycles side by side
-// (micro_collision_cycle BM_TwinCycles) never meet. BM_Handover/S: S KiB
-// of 64-byte lines, each written (a new value) by this thread or by the
-// pool's other one, alternating with the iteration, and then read by this
-// thread in a scattered order (independent loads, as BM_Gather's); only
-// the read is timed. read_ratio: the read after the other core's writes
-// over the read after this core's; ns_per_line_own and ns_per_line_other.
-struct alignas(64) Line {
-  std::uint64_t value = 0;
-};
-
+// has (sim/parallel/core_handover.hpp): a split cycle's threads build one
+// table together and then both read all of it (the point queries), so
+// about half of what each reads was last written by the other core, which
+// two independent cycles side by side (micro_collision_cycle
+// BM_TwinCycles) never meet. BM_Handover/S: S KiB, two rounds an
+// iteration; read_ratio is the read after the other core's fills over the
+// read after this one's (sums over the iterations), ns_per_line_own and
+// ns_per_line_other the means an iteration, apart_share the share of the
+// other core's fills that ran on another CPU than the read (1 unless the
+// scheduler put both threads on one).
 void BM_Handover(benchmark::State& state) {
-  std::vector<Line> lines(static_cast<std::size_t>(state.range(0)) * 1024 / sizeof(Line));
   WorkerPool two(2);
-  Sink sink;
-  double own_s = 0.0, other_s = 0.0;
-  std::uint64_t stamp = 0;  // the value written: new at every write
-  std::int64_t calls = 0;
+  double own_ns = 0.0, other_ns = 0.0;
+  int fills = 0, apart = 0;
   for (auto _ : state) {
-    for (int k = 0; k < 2; ++k) {
-      const bool other = (calls + k) % 2 == 0;  // which goes first alternates
-      ++stamp;
-      two.for_ranges(2, [&](int part, std::size_t, std::size_t) {
-        if ((part == 1) != other) return;  // part 0 is this thread
-        for (Line& line : lines) line.value = stamp;
-      });
-      const auto start = std::chrono::steady_clock::now();
-      std::uint64_t sum = 0;
-      for (std::size_t i = 0; i < lines.size(); ++i) sum += lines[(i * 0x9E3779B97F4A7C15ULL >> 20) % lines.size()].value;
-      (other ? other_s : own_s) += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      sink.bits += sum;
-      benchmark::DoNotOptimize(sink.bits);
-    }
-    ++calls;
+    const tcb::HandoverTimes t = tcb::measure_handover(two, static_cast<std::size_t>(state.range(0)) * 1024, 2);
+    own_ns += t.own_ns_per_line;
+    other_ns += t.other_ns_per_line;
+    fills += t.other_fills;
+    apart += t.other_fills_apart;
   }
-  const double reads = static_cast<double>(state.iterations()) * static_cast<double>(lines.size());
-  state.counters["read_ratio"] = own_s > 0.0 ? other_s / own_s : 0.0;
-  state.counters["ns_per_line_own"] = 1e9 * own_s / reads;
-  state.counters["ns_per_line_other"] = 1e9 * other_s / reads;
+  const double n = static_cast<double>(std::max<benchmark::IterationCount>(state.iterations(), 1));
+  state.counters["read_ratio"] = own_ns > 0.0 ? other_ns / own_ns : 0.0;
+  state.counters["ns_per_line_own"] = own_ns / n;
+  state.counters["ns_per_line_other"] = other_ns / n;
+  state.counters["apart_share"] = fills > 0 ? static_cast<double>(apart) / fills : 0.0;
 }
 
 // Working sets: within L2 (1 MiB), the collision cycle's on the dog pair

@@ -86,9 +86,10 @@ std::optional<double> summary_metric(const Json& run, const std::string& dotted)
 }
 
 void write_summary_csv(const std::filesystem::path& path, const std::vector<SummaryRow>& rows) {
-  const std::vector<std::string> fixed = {"run",          "scene",  "method",     "method_label", "budget",
-                                          "budget_kind",  "budget_value", "seed", "threads", "mesh_order",
-                                          "overrides",    "status", "steps",      "wall_s"};
+  const std::vector<std::string> fixed = {"run",           "scene",        "method",       "method_label",
+                                          "budget",        "budget_kind",  "budget_value", "seed",
+                                          "threads",       "handover_start", "handover_end", "mesh_order",
+                                          "overrides",     "status",       "steps",        "wall_s"};
   std::vector<std::string> metrics;  // in order of first appearance
   std::map<std::string, bool> known;
   std::vector<std::map<std::string, std::string>> cells(rows.size());
@@ -110,6 +111,10 @@ void write_summary_csv(const std::filesystem::path& path, const std::vector<Summ
     c["budget_value"] = text(field(budget, "value"));
     c["seed"] = text(field(r, "seed"));
     c["threads"] = text(field(field(r, "collision"), "threads"));  // collision.threads: wall times depend on it
+    // and on how cheaply the cores hand each other lines (empty on one thread)
+    const Json handover = field(field(r, "collision"), "handover_ratio");
+    c["handover_start"] = text(field(handover, "start"));
+    c["handover_end"] = text(field(handover, "end"));
     // world.mesh_order: renumbered vertices change sums, and under a budget the order of work
     c["mesh_order"] = text(field(field(r, "world"), "mesh_order"));
     std::string overrides;

@@ -1,6 +1,7 @@
 #pragma once
 /// summary.csv: one row per run of a results directory, from each run's
-/// run.json: who ran (scene, method, budget, seed, threads, overrides), how it ended,
+/// run.json: who ran (scene, method, budget, seed, threads and the cores'
+/// handover ratios, mesh order, overrides), how it ended,
 /// and every number and string of its summary, nested keys joined with '.'
 /// (handling_ms.p50, depth_err.max). A run without a complete run.json has a
 /// row with its status ("failed", "missing") and empty figures. Written

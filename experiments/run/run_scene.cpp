@@ -16,6 +16,7 @@
 #include "experiments/run/thread_clock.hpp"
 #include "method/detection/spatial_hash.hpp"
 #include "sim/io/input_error.hpp"
+#include "sim/parallel/core_handover.hpp"
 #include "sim/world/perturbation.hpp"
 
 namespace tcb {
@@ -116,6 +117,21 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
 
   // Everything that can fail on bad input happens before the directory exists.
   const MethodInfo& method = find_method(options.method);
+  // Where the cycle may run on several threads, how cheaply the cores hand
+  // each other what they wrote, before the run and after it: the
+  // hypervisor's placement of the vCPUs, which moves a 2-thread time by a
+  // third on the development VM (sim/parallel/core_handover.hpp). Before the
+  // world is built and after the run's memory is read, so the probe's
+  // pool, buffer and cache traffic touch no timed interval and no figure
+  // but the process's peak, which includes its 4 MiB only where the run
+  // stays below that; none where the run is pinned (its threads share one
+  // CPU).
+  const bool split = method.detects && scene.collision.threads > 1;
+  const auto handover_ratio = [&]() -> Json {
+    const std::optional<double> ratio = split && !options.pin_cpu ? probe_handover_ratio() : std::nullopt;
+    return ratio ? Json(*ratio) : Json(nullptr);
+  };
+  const Json handover_start = handover_ratio();
   const auto table = scene.methods.find(options.method);
   const MethodSettings settings = table != scene.methods.end() ? table->second : MethodSettings(method.settings);
   std::unique_ptr<CollisionHandler> handler = method.make(settings);
@@ -197,6 +213,9 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
     if (outcome.status != "ok" || !go_on) break;
   }
   outcome.wall_s = ms_since(run_start) / 1000.0;
+  const Json peak_memory = peak_memory_json(world);
+  const Json collision_memory = collision_memory_json(world, *handler);
+  const Json handover_end = handover_ratio();
 
   Json summary = Json::object();
   summary["oracle_unmeasured"] = Json::array();  // meters add their reasons
@@ -229,7 +248,9 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
                       {"table_size", collision.detection.table_size},
                       {"tets", collision.tets},
                       {"hash", collision.detection.hash == HashFunction::Paper ? "paper" : "mixed"},
-                      {"threads", collision.threads}};
+                      {"threads", collision.threads},
+                      {"handover_ratio",
+                       split ? Json{{"start", handover_start}, {"end", handover_end}} : Json(nullptr)}};
   run["pin"] = options.pin_cpu ? Json(*options.pin_cpu) : Json(nullptr);
   run["oracle"] = setup.oracle.label();
   run["oracle_volume"] = setup.overlap.label();
@@ -250,8 +271,8 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
   run["status"] = outcome.status;
   run["unstable_reason"] = outcome.reason.empty() ? Json(nullptr) : Json(outcome.reason);
   run["world"] = world_json(scene, world);
-  run["peak_memory"] = peak_memory_json(world);
-  run["collision_memory"] = collision_memory_json(world, *handler);
+  run["peak_memory"] = peak_memory;
+  run["collision_memory"] = collision_memory;
   const auto counts = handler->cycle_counts();
   run["cycles"] = counts ? Json{{"begun", counts->begun}, {"tet_hashes_fresh", counts->tet_hashes_fresh}} : Json(nullptr);
   run["summary"] = summary;

@@ -155,9 +155,12 @@ TEST_CASE("a run writes complete steps.csv and run.json", "[run]") {
   pinned.out_dir = fresh_dir("pinned");
   pinned.steps = 3;
   pinned.pin_cpu = allowed_cpus().back();
-  REQUIRE(run_scene(small_drop(), pinned).status == "ok");
+  SceneDesc two_threads = small_drop();  // pinned, both share the one CPU: no handover between cores to probe
+  two_threads.collision.threads = 2;
+  REQUIRE(run_scene(two_threads, pinned).status == "ok");
   const auto pinned_run = nlohmann::json::parse(read_file(pinned.out_dir / "run.json"));
   CHECK(pinned_run["pin"] == *pinned.pin_cpu);
+  CHECK(pinned_run["collision"]["handover_ratio"] == nlohmann::json{{"start", nullptr}, {"end", nullptr}});
   CHECK(pinned_run["summary"]["timing"]["pinned_cpu"] == *pinned.pin_cpu);
   CHECK(pinned_cpu() == before);
   fs::remove_all(pinned.out_dir);
@@ -392,7 +395,21 @@ TEST_CASE("under a work budget two runs are identical apart from timings, whatev
   if (keep) CHECK(begun > 2);  // cycles after the first, to refresh
   CHECK((fresh < begun - 1) == keep);
   CHECK(run["collision"]["threads"] == 1);
-  CHECK(nlohmann::json::parse(read_file(b / "run.json"))["collision"]["threads"] == 3);
+  const auto threaded_run = nlohmann::json::parse(read_file(b / "run.json"));
+  CHECK(threaded_run["collision"]["threads"] == 3);
+  // The vCPUs' handover, probed only where the cycle has threads to split
+  // over: at both ends of the run a ratio of two read times, or null where
+  // the probe's two threads ran on one CPU (this suite runs tests side by
+  // side, so that may happen).
+  CHECK(run["collision"]["handover_ratio"].is_null());
+  const nlohmann::json& handover = threaded_run["collision"]["handover_ratio"];
+  REQUIRE(handover.is_object());
+  CHECK(handover.size() == 2);
+  for (const char* end : {"start", "end"}) {
+    INFO(end);
+    REQUIRE(handover.contains(end));
+    CHECK((handover[end].is_null() || (handover[end].is_number() && handover[end].get<double>() > 0.0)));
+  }
   // The largest charge: the paper's one hashing task, or a small piece of it.
   CHECK((run["summary"]["max_task_work"].get<double>() > 10000.0) == !fine);
   fs::remove_all(a);

@@ -155,8 +155,9 @@ leftovers=$(find "$work/cluster" -name '*.tmp*' | head -3)
 # The merged summary against the one-process sweep's, run for run.
 /usr/bin/python3 - "$work/local/summary.csv" "$work/cluster/summary.csv" <<'EOF' || fail "the merged summary differs from the local sweep's"
 import csv, re, sys
-# Wall-clock measurements differ between any two runs; everything else is the simulation's.
-timing = re.compile(r"^wall_s$|_ms|ms_|_us$|^timing\.|overshoot")
+# Wall-clock measurements (and the cores' handover ratios) differ between any two runs;
+# everything else is the simulation's.
+timing = re.compile(r"^wall_s$|_ms|ms_|_us$|^timing\.|overshoot|^handover_")
 def rows(path):
     with open(path, newline="") as f:
         table = list(csv.DictReader(f))
