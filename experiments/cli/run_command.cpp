@@ -81,7 +81,8 @@ class RunCommand final : public Command {
     app->add_option("--threads", m_threads,
                     "Threads for the collision cycle's tet hashing, point queries and border depths (the scene's "
                     "collision.threads; default 1, "
-                    "which keeps wall-clock budgets on one core; the results are the same for every count)")
+                    "which keeps wall-clock budgets on one core; the results are the same for every count; "
+                    "above 1, run.json records the cores' handover ratio, which the times depend on)")
         ->check(whole_number(1, 64));
     app->add_flag("--quiet", m_quiet, "Print nothing but errors");
   }

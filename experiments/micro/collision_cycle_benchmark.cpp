@@ -482,6 +482,8 @@ void BM_TwinCycles(benchmark::State& state) {
                               CollisionCycle(twin, one, DetectionMode::SpatialHash)};
   World* worlds[2] = {&f.world, &twin};
   WorkerPool pool(2);
+  // A new worker polls first: let it block before the first pinned pair runs.
+  std::this_thread::sleep_for(std::chrono::microseconds(2 * WorkerPool::poll_us()));
   // Stage times summed over the cycles run so (beside: a twin's own, added up after).
   StageCosts alone, beside[2];
   const auto run = [&](int k, StageCosts& sum) {

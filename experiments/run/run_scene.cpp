@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <exception>
 #include <optional>
 
 #include "baselines/registry.hpp"
@@ -119,17 +120,23 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
   const MethodInfo& method = find_method(options.method);
   // Where the cycle may run on several threads, how cheaply the cores hand
   // each other what they wrote, before the run and after it: the
-  // hypervisor's placement of the vCPUs, which moves a 2-thread time by a
-  // third on the development VM (sim/parallel/core_handover.hpp). Before the
-  // world is built and after the run's memory is read, so the probe's
-  // pool, buffer and cache traffic touch no timed interval and no figure
-  // but the process's peak, which includes its 4 MiB only where the run
-  // stays below that; none where the run is pinned (its threads share one
-  // CPU).
+  // hypervisor's placement of the vCPUs, which moved the dog pair's 2-thread
+  // cycle time by 20-40 % on the development VM (sim/parallel/core_handover.hpp).
+  // Before the world is built, and after the meters' summaries and the
+  // memory figures, so the probe's pool, buffers and cache traffic touch no
+  // timed interval and no figure but the process's peak, which includes its
+  // 4.25 MiB only where the run stays below that; none where the run is
+  // pinned (its threads share one CPU). A probe that fails (no thread, no
+  // memory) records null: it must not cost a finished run its record.
   const bool split = method.detects && scene.collision.threads > 1;
   const auto handover_ratio = [&]() -> Json {
-    const std::optional<double> ratio = split && !options.pin_cpu ? probe_handover_ratio() : std::nullopt;
-    return ratio ? Json(*ratio) : Json(nullptr);
+    if (!split || options.pin_cpu) return nullptr;
+    try {
+      const std::optional<double> ratio = probe_handover_ratio();
+      return ratio ? Json(*ratio) : Json(nullptr);
+    } catch (const std::exception&) {
+      return nullptr;
+    }
   };
   const Json handover_start = handover_ratio();
   const auto table = scene.methods.find(options.method);
@@ -213,9 +220,6 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
     if (outcome.status != "ok" || !go_on) break;
   }
   outcome.wall_s = ms_since(run_start) / 1000.0;
-  const Json peak_memory = peak_memory_json(world);
-  const Json collision_memory = collision_memory_json(world, *handler);
-  const Json handover_end = handover_ratio();
 
   Json summary = Json::object();
   summary["oracle_unmeasured"] = Json::array();  // meters add their reasons
@@ -224,6 +228,9 @@ RunOutcome run_scene(const SceneDesc& scene, const RunOptions& options) {
   std::sort(unmeasured.begin(), unmeasured.end());
   unmeasured.erase(std::unique(unmeasured.begin(), unmeasured.end()), unmeasured.end());
   summary["oracle_unmeasured"] = unmeasured;
+  const Json peak_memory = peak_memory_json(world);
+  const Json collision_memory = collision_memory_json(world, *handler);
+  const Json handover_end = handover_ratio();
 
   Json run;
   run["schema"] = "tcbench.run/2";

@@ -6,11 +6,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
+#include <limits>
 #include <new>
 #include <numeric>
 #include <random>
 #include <stdexcept>
-#include <vector>
+#include <thread>
 
 namespace tcb {
 
@@ -20,26 +21,30 @@ struct alignas(64) Line {
   std::uint64_t value = 0;
 };
 
-// The lines, mapped for one call and unmapped after it: a 4 MiB vector
+// `count` values of T (trivial, zero-initialised by the kernel), mapped for
+// one call and unmapped after it: a vector of a few hundred KiB or more
 // would be mmapped by glibc too, but freeing it raises glibc's mmap
 // threshold for the rest of the process (a run's later allocations would
 // then come from the heap where a run without the probe maps them).
-class MappedLines {
+template <typename T>
+class Mapped {
  public:
-  explicit MappedLines(std::size_t count) : m_count(count) {
-    void* p = mmap(nullptr, count * sizeof(Line), PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  explicit Mapped(std::size_t count) : m_count(count) {
+    void* p = mmap(nullptr, count * sizeof(T), PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
     if (p == MAP_FAILED) throw std::bad_alloc();
-    m_lines = static_cast<Line*>(p);
+    m_data = static_cast<T*>(p);
   }
-  ~MappedLines() { munmap(m_lines, m_count * sizeof(Line)); }
-  MappedLines(const MappedLines&) = delete;
-  MappedLines& operator=(const MappedLines&) = delete;
-  Line* begin() { return m_lines; }
-  Line* end() { return m_lines + m_count; }
-  const Line& operator[](std::size_t i) const { return m_lines[i]; }
+  ~Mapped() { munmap(m_data, m_count * sizeof(T)); }
+  Mapped(const Mapped&) = delete;
+  Mapped& operator=(const Mapped&) = delete;
+  T* begin() { return m_data; }
+  T* end() { return m_data + m_count; }
+  const T* begin() const { return m_data; }
+  const T* end() const { return m_data + m_count; }
+  const T& operator[](std::size_t i) const { return m_data[i]; }
 
  private:
-  Line* m_lines = nullptr;
+  T* m_data = nullptr;
   std::size_t m_count;
 };
 
@@ -48,18 +53,29 @@ class MappedLines {
 HandoverTimes measure_handover(WorkerPool& pool, std::size_t bytes, int rounds) {
   if (pool.threads() < 2) throw std::invalid_argument("measure_handover needs a pool of at least two threads");
   if (bytes < sizeof(Line)) throw std::invalid_argument("measure_handover needs at least one 64-byte line");
+  if (bytes / sizeof(Line) > std::numeric_limits<std::uint32_t>::max())
+    throw std::invalid_argument("measure_handover takes at most 2^32 - 1 lines");
   if (rounds < 1) throw std::invalid_argument("measure_handover needs at least one round");
   const std::size_t count = bytes / sizeof(Line);
-  MappedLines lines(count);
+  Mapped<Line> lines(count);
   // Every line once, in an order no prefetcher follows (fixed seed: the same
   // order in every call); read from a sequential array, not computed in
   // the timed loop.
-  std::vector<std::uint32_t> order(count);
+  Mapped<std::uint32_t> order(count);
   std::iota(order.begin(), order.end(), 0u);
   std::shuffle(order.begin(), order.end(), std::mt19937(14));
+  std::uint64_t stamp = 0, sum = 0;
+  const auto read_all = [&] {
+    for (const std::uint32_t i : order) sum += lines[i].value;
+  };
+  // An untimed fill and read by the calling thread first: the pages are
+  // faulted in and in its TLB before any timed read, so the first timed
+  // read (always after the other thread's fill) pays no more than the rest.
+  ++stamp;
+  for (Line& line : lines) line.value = stamp;
+  read_all();
   HandoverTimes out;
   double own_s = 0.0, other_s = 0.0;
-  std::uint64_t stamp = 0, sum = 0;
   for (int round = 0; round < rounds; ++round)
     for (int k = 0; k < 2; ++k) {
       const bool other = (round + k) % 2 == 0;
@@ -72,7 +88,7 @@ HandoverTimes measure_handover(WorkerPool& pool, std::size_t bytes, int rounds) 
       });
       const int reader_cpu = sched_getcpu();
       const auto start = std::chrono::steady_clock::now();
-      for (const std::uint32_t i : order) sum += lines[i].value;
+      read_all();
       (other ? other_s : own_s) += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       if (other) {
         ++out.other_fills;
@@ -88,14 +104,21 @@ HandoverTimes measure_handover(WorkerPool& pool, std::size_t bytes, int rounds) 
   return out;
 }
 
+std::optional<double> handover_ratio_of(const HandoverTimes& t) {
+  if (t.other_fills < 1 || t.other_fills_apart < t.other_fills || !(t.own_ns_per_line > 0.0)) return std::nullopt;
+  return t.ratio();
+}
+
 std::optional<double> probe_handover_ratio() {
   cpu_set_t allowed;
   CPU_ZERO(&allowed);
   if (sched_getaffinity(0, sizeof allowed, &allowed) != 0 || CPU_COUNT(&allowed) < 2) return std::nullopt;
+  // A pool that has just finished a parallel section polls for up to
+  // poll_us() (a run's handler's, a benchmark's 2-thread cycle's): let it
+  // block first, so it takes no CPU from the probe.
+  std::this_thread::sleep_for(std::chrono::microseconds(2 * WorkerPool::poll_us()));
   WorkerPool pool(2);
-  const HandoverTimes t = measure_handover(pool, kProbeBytes, kProbeRounds);
-  if (t.other_fills_apart < t.other_fills) return std::nullopt;
-  return t.ratio();
+  return handover_ratio_of(measure_handover(pool, kProbeBytes, kProbeRounds));
 }
 
 }  // namespace tcb

@@ -21,24 +21,32 @@
 /// written by the pool's second thread ("other") or by the calling thread
 /// ("own"), `rounds` times each, alternating which goes first, and after every
 /// fill times the calling thread reading every line once in a fixed shuffled
-/// order (independent loads; the order is read from a sequential array). The
-/// buffer is mapped for the call and unmapped after it, so the allocator's
-/// state is left as it was (its pages do count in the process's peak
-/// resident memory). Returns the mean nanoseconds a line read after the other
-/// thread's fills and after its own, and how many of the other thread's fills
-/// ran on another CPU than the read after it (sched_getcpu() at the end of
-/// the fill and at the start of the read): where the pool's threads share one
-/// CPU (a pinned pool) none do, and the ratio is one core's against itself.
-/// Needs pool.threads() >= 2, bytes >= 64 and rounds >= 1 (else
-/// std::invalid_argument; std::bad_alloc if the buffer cannot be mapped);
+/// order (independent loads; the order is read from a sequential array).
+/// Before the timed rounds the calling thread fills and reads the lines once,
+/// untimed (their pages faulted in). The lines and the order are mapped for
+/// the call and unmapped after it, so the allocator's state is left as it
+/// was (their pages do count in the process's peak resident memory). Returns
+/// the mean nanoseconds a line read after the other thread's fills and after
+/// its own, and how many of the other thread's fills ran on another CPU than
+/// the read after it (sched_getcpu() at the end of the fill and at the start
+/// of the read): where the pool's threads share one CPU (a pinned pool) none
+/// do, and the ratio is one core's against itself. Needs pool.threads() >= 2,
+/// bytes >= 64, at most 2^32 - 1 lines and rounds >= 1 (else
+/// std::invalid_argument; std::bad_alloc if the buffers cannot be mapped);
 /// uses the pool, so not from inside one of its parts. Wall-clock times: the
 /// host's noise is in them.
 ///
-/// probe_handover_ratio(): the ratio as runs and benchmarks record it, from a
-/// pool of two made for the call (the calling thread's affinity), kProbeBytes
-/// and kProbeRounds: nullopt where fewer than two CPUs are allowed or where
-/// some "other" fill ran on the reader's CPU, so no ratio says "shares a
-/// cache" when the threads merely shared a core. About 10 ms.
+/// handover_ratio_of(t): t.ratio() where it says something about two cores:
+/// nullopt unless the other thread filled at least once, every such fill ran
+/// on another CPU than the read after it, and the own reads took time.
+///
+/// probe_handover_ratio(): the ratio as runs and benchmarks record it: after
+/// a pause of twice WorkerPool::poll_us() (a pool that has just worked stops
+/// polling), from a pool of two made for the call (the calling thread's
+/// affinity), kProbeBytes and kProbeRounds, through handover_ratio_of();
+/// nullopt also where fewer than two CPUs are allowed. So no ratio says
+/// "shares a cache" when the threads merely shared a core. About 12 ms; maps
+/// 4.25 MiB (the lines and their order) for the call.
 #include <cstddef>
 #include <optional>
 
@@ -61,6 +69,8 @@ HandoverTimes measure_handover(WorkerPool& pool, std::size_t bytes, int rounds);
 /// the dog pair's cycle works (its boxes, tets, table and positions: ~8 MiB).
 inline constexpr std::size_t kProbeBytes = std::size_t{4} << 20;
 inline constexpr int kProbeRounds = 4;
+
+std::optional<double> handover_ratio_of(const HandoverTimes& t);
 
 std::optional<double> probe_handover_ratio();
 

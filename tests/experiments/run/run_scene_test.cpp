@@ -161,6 +161,14 @@ TEST_CASE("a run writes complete steps.csv and run.json", "[run]") {
   const auto pinned_run = nlohmann::json::parse(read_file(pinned.out_dir / "run.json"));
   CHECK(pinned_run["pin"] == *pinned.pin_cpu);
   CHECK(pinned_run["collision"]["handover_ratio"] == nlohmann::json{{"start", nullptr}, {"end", nullptr}});
+  // A method that detects nothing has no cycle to split: no probe, whatever the threads.
+  RunOptions idle;
+  idle.method = "none";
+  idle.out_dir = fresh_dir("idle_threads");
+  idle.steps = 2;
+  REQUIRE(run_scene(two_threads, idle).status == "ok");
+  CHECK(nlohmann::json::parse(read_file(idle.out_dir / "run.json"))["collision"]["handover_ratio"].is_null());
+  fs::remove_all(idle.out_dir);
   CHECK(pinned_run["summary"]["timing"]["pinned_cpu"] == *pinned.pin_cpu);
   CHECK(pinned_cpu() == before);
   fs::remove_all(pinned.out_dir);

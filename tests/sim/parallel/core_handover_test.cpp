@@ -4,7 +4,9 @@
 #include <pthread.h>
 #include <sched.h>
 
+#include <atomic>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -31,6 +33,13 @@ bool set_affinity(const std::vector<int>& cpus) {
   return pthread_setaffinity_np(pthread_self(), sizeof set, &set) == 0;
 }
 
+// Gives the calling thread `cpus` back when it leaves scope, a failed
+// REQUIRE or a throw too: the rest of the suite must not run pinned.
+struct RestoreAffinity {
+  std::vector<int> cpus;
+  ~RestoreAffinity() { set_affinity(cpus); }
+};
+
 }  // namespace
 
 TEST_CASE("measure_handover refuses what it cannot measure", "[core_handover]") {
@@ -53,8 +62,14 @@ TEST_CASE("measure_handover times both reads on pools of two and more", "[core_h
       const HandoverTimes t = measure_handover(pool, bytes, 3);
       CHECK(std::isfinite(t.own_ns_per_line));
       CHECK(std::isfinite(t.other_ns_per_line));
-      CHECK(t.own_ns_per_line > 0.0);
-      CHECK(t.other_ns_per_line > 0.0);
+      // One line's read may fall within one tick of a coarse clock (100 ns
+      // on some hypervisors); 1024 lines' reads cannot.
+      CHECK(t.own_ns_per_line >= 0.0);
+      CHECK(t.other_ns_per_line >= 0.0);
+      if (bytes >= 1 << 16) {
+        CHECK(t.own_ns_per_line > 0.0);
+        CHECK(t.other_ns_per_line > 0.0);
+      }
       CHECK(t.other_fills == 3);
       CHECK(t.other_fills_apart >= 0);
       CHECK(t.other_fills_apart <= 3);
@@ -67,38 +82,42 @@ TEST_CASE("measure_handover times both reads on pools of two and more", "[core_h
   CHECK(HandoverTimes{}.ratio() == 0.0);                 // nothing measured: no ratio, not a division by zero
 }
 
+TEST_CASE("handover_ratio_of gives a ratio only where every other fill ran on another CPU", "[core_handover]") {
+  CHECK(handover_ratio_of({2.0, 5.0, 4, 4}) == 2.5);
+  CHECK_FALSE(handover_ratio_of({2.0, 5.0, 4, 3}).has_value());  // one fill on the reader's CPU
+  CHECK_FALSE(handover_ratio_of({2.0, 5.0, 4, 0}).has_value());  // a pinned pool: one core against itself
+  CHECK_FALSE(handover_ratio_of({2.0, 5.0, 0, 0}).has_value());  // no fill by the other thread
+  CHECK_FALSE(handover_ratio_of({0.0, 5.0, 4, 4}).has_value());  // own reads too quick to time: no ratio, not 0
+}
+
 TEST_CASE("the other fills are the second thread's, on its CPU; a pinned pool has no other CPU", "[core_handover]") {
   const std::vector<int> cpus = allowed();
   if (cpus.size() < 2) {
     WARN("needs two CPUs; " << cpus.size() << " allowed");
     return;
   }
+  const RestoreAffinity restore{cpus};
   SECTION("caller and worker pinned to two CPUs: every other fill written on the worker's") {
-    WorkerPool pool(2);
-    bool pinned = true;
+    WorkerPool pool(2);  // its worker dies with it, pinned or not
+    std::atomic<int> pinned{0};
     // Each thread pins itself: part 0 (this thread) to one CPU, part 1 to the other.
     pool.for_ranges(2, [&](int part, std::size_t, std::size_t) {
-      if (!set_affinity({cpus[static_cast<std::size_t>(part)]})) pinned = false;
+      if (set_affinity({cpus[static_cast<std::size_t>(part)]})) ++pinned;
     });
-    REQUIRE(pinned);
+    REQUIRE(pinned == 2);
     const HandoverTimes t = measure_handover(pool, 1 << 16, 4);
-    pool.for_ranges(2, [&](int, std::size_t, std::size_t) { set_affinity(cpus); });  // both threads freed again
     CHECK(t.other_fills == 4);
     CHECK(t.other_fills_apart == 4);
+    CHECK(handover_ratio_of(t).has_value());
   }
   SECTION("a pool made on a pinned thread shares its CPU: no fill apart, and no ratio probed") {
     REQUIRE(set_affinity({cpus[0]}));
-    std::optional<double> probed;
-    HandoverTimes t;
-    {
-      WorkerPool pool(2);  // its worker inherits the pin
-      t = measure_handover(pool, 1 << 16, 2);
-      probed = probe_handover_ratio();
-    }
-    set_affinity(cpus);
+    WorkerPool pool(2);  // its worker inherits the pin
+    const HandoverTimes t = measure_handover(pool, 1 << 16, 2);
     CHECK(t.other_fills == 2);
     CHECK(t.other_fills_apart == 0);
-    CHECK_FALSE(probed.has_value());
+    CHECK_FALSE(handover_ratio_of(t).has_value());
+    CHECK_FALSE(probe_handover_ratio().has_value());
   }
   SECTION("unpinned, the probe gives a positive ratio or, if the scheduler put both threads on one CPU, none") {
     const std::optional<double> ratio = probe_handover_ratio();
