@@ -211,6 +211,20 @@ CellFigures cell_figures(const World& world, const DetectionSettings& d) {
           static_cast<double>(entries) / static_cast<double>(std::max<std::size_t>(tets, 1))};
 }
 
+// One whole cycle without a budget at the world's positions, its stage
+// costs counted afresh (the benchmarks' unit of work).
+void full_cycle(CollisionCycle& cycle, World& world) {
+  cycle.begin(world);
+  cycle.start_step_costs();
+  Budget unlimited = Budget::unlimited();
+  cycle.advance(world, unlimited);
+}
+
+// Adds a cycle's stage times to `sum`.
+void add_stage_ms(StageCosts& sum, const CollisionCycle& cycle) {
+  for (std::size_t st = 0; st < kCostStages; ++st) sum.ms[st] += cycle.step_costs().ms[st];
+}
+
 // Moves the bodies marked in `moving` along x by 1 mm, forwards in the
 // first 16 of every 32 calls and back in the others (a step of 1 m/s at
 // dt 1 ms), and advances the step index.
@@ -240,13 +254,10 @@ void run_cycles(benchmark::State& state, Fixture& f, CollisionSettings settings,
       move_between_cycles(f.world, moving, calls++);
       state.ResumeTiming();
     }
-    cycle.begin(f.world);
-    cycle.start_step_costs();
-    Budget unlimited = Budget::unlimited();
-    cycle.advance(f.world, unlimited);
+    full_cycle(cycle, f.world);
     colliding = cycle.contacts().size();
     benchmark::DoNotOptimize(cycle.contacts().data());
-    for (std::size_t s = 0; s < kCostStages; ++s) stages.ms[s] += cycle.step_costs().ms[s];
+    add_stage_ms(stages, cycle);
   }
   // ms_<stage>: the cycle's wall time per stage (its steady clock, read at
   // stage changes), per cycle: where a thread count's speed-up is limited.
@@ -334,12 +345,9 @@ struct SideBySide {
     for (int k = 0; k < 2; ++k) {
       const int which = static_cast<int>((call + k) % 2);
       const auto start = std::chrono::steady_clock::now();
-      cycles[which]->begin(*worlds[which]);
-      cycles[which]->start_step_costs();
-      Budget unlimited = Budget::unlimited();
-      cycles[which]->advance(*worlds[which], unlimited);
+      full_cycle(*cycles[which], *worlds[which]);
       seconds[which] += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      for (std::size_t st = 0; st < kCostStages; ++st) stages[which].ms[st] += cycles[which]->step_costs().ms[st];
+      add_stage_ms(stages[which], *cycles[which]);
     }
   }
   /// The benchmark's loop: each iteration, if `moves`, first calls
@@ -487,11 +495,8 @@ void BM_TwinCycles(benchmark::State& state) {
   // Stage times summed over the cycles run so (beside: a twin's own, added up after).
   StageCosts alone, beside[2];
   const auto run = [&](int k, StageCosts& sum) {
-    cycles[k].begin(*worlds[k]);
-    cycles[k].start_step_costs();
-    Budget unlimited = Budget::unlimited();
-    cycles[k].advance(*worlds[k], unlimited);
-    for (std::size_t st = 0; st < kCostStages; ++st) sum.ms[st] += cycles[k].step_costs().ms[st];
+    full_cycle(cycles[k], *worlds[k]);
+    add_stage_ms(sum, cycles[k]);
   };
   using Clock = std::chrono::steady_clock;
   const auto seconds_since = [](Clock::time_point t) {
@@ -733,10 +738,7 @@ BesideCycle time_beside_cycle(benchmark::State& state, CollisionCycle& cycle, Wo
   for (auto _ : state) {
     for (int k = 0; k < 2; ++k) {
       if ((t.calls + k) % 2 == 0) {
-        cycle.begin(world);
-        cycle.start_step_costs();
-        Budget unlimited = Budget::unlimited();
-        cycle.advance(world, unlimited);
+        full_cycle(cycle, world);
         for (const CostStage st : stages) t.cycle_ms += cycle.step_costs().ms[static_cast<std::size_t>(st)];
       } else {
         const auto start = std::chrono::steady_clock::now();

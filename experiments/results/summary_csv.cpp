@@ -86,10 +86,10 @@ std::optional<double> summary_metric(const Json& run, const std::string& dotted)
 }
 
 void write_summary_csv(const std::filesystem::path& path, const std::vector<SummaryRow>& rows) {
-  const std::vector<std::string> fixed = {"run",           "scene",        "method",       "method_label",
-                                          "budget",        "budget_kind",  "budget_value", "seed",
-                                          "threads",       "handover_start", "handover_end", "mesh_order",
-                                          "overrides",     "status",       "steps",        "wall_s"};
+  const std::vector<std::string> fixed = {"run",          "scene",          "method",       "method_label",
+                                          "budget",       "budget_kind",    "budget_value", "seed",
+                                          "threads",      "handover_start", "handover_end", "mesh_order",
+                                          "overrides",    "status",         "steps",        "wall_s"};
   std::vector<std::string> metrics;  // in order of first appearance
   std::map<std::string, bool> known;
   std::vector<std::map<std::string, std::string>> cells(rows.size());
@@ -111,7 +111,7 @@ void write_summary_csv(const std::filesystem::path& path, const std::vector<Summ
     c["budget_value"] = text(field(budget, "value"));
     c["seed"] = text(field(r, "seed"));
     c["threads"] = text(field(field(r, "collision"), "threads"));  // collision.threads: wall times depend on it
-    // and on how cheaply the cores hand each other lines (empty on one thread)
+    // and on how cheaply the cores hand each other lines (empty where not probed)
     const Json handover = field(field(r, "collision"), "handover_ratio");
     c["handover_start"] = text(field(handover, "start"));
     c["handover_end"] = text(field(handover, "end"));

@@ -644,8 +644,9 @@ std::size_t batch_chunk(std::size_t size, std::size_t threads, std::size_t max_c
   // 1.07-1.27 ms with this rule (micro_collision_cycle BM_ThreadsPaired/0/0,
   // ms2_query_points, three rounds of alternated binaries). Its 1,541
   // border depths cost about a microsecond each and keep 16: at 256 (7
-  // chunks) the 2 threads took longer than one. A quarter of a thread's share, so a budget's
-  // batch of 64 items a thread still splits into 16-item chunks.
+  // chunks) the 2 threads took longer than one. A quarter of a thread's
+  // share, so a budget's batch of 64 items a thread still splits into
+  // 16-item chunks.
   constexpr std::size_t kLeast = 16, kChunksPerThread = 4;
   const std::size_t even = size / (kChunksPerThread * std::max<std::size_t>(threads, 1));
   return std::max<std::size_t>(std::min(std::max(even, kLeast), max_chunk), 1);

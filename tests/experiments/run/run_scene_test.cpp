@@ -161,6 +161,9 @@ TEST_CASE("a run writes complete steps.csv and run.json", "[run]") {
   const auto pinned_run = nlohmann::json::parse(read_file(pinned.out_dir / "run.json"));
   CHECK(pinned_run["pin"] == *pinned.pin_cpu);
   CHECK(pinned_run["collision"]["handover_ratio"] == nlohmann::json{{"start", nullptr}, {"end", nullptr}});
+  CHECK(pinned_run["summary"]["timing"]["pinned_cpu"] == *pinned.pin_cpu);
+  CHECK(pinned_cpu() == before);
+  fs::remove_all(pinned.out_dir);
   // A method that detects nothing has no cycle to split: no probe, whatever the threads.
   RunOptions idle;
   idle.method = "none";
@@ -169,9 +172,6 @@ TEST_CASE("a run writes complete steps.csv and run.json", "[run]") {
   REQUIRE(run_scene(two_threads, idle).status == "ok");
   CHECK(nlohmann::json::parse(read_file(idle.out_dir / "run.json"))["collision"]["handover_ratio"].is_null());
   fs::remove_all(idle.out_dir);
-  CHECK(pinned_run["summary"]["timing"]["pinned_cpu"] == *pinned.pin_cpu);
-  CHECK(pinned_cpu() == before);
-  fs::remove_all(pinned.out_dir);
   CHECK(fs::exists(dir / "frames.pvd"));
   CHECK(fs::exists(dir / "frames/frame_000050.vtu"));
   for (const auto& entry : fs::recursive_directory_iterator(dir)) CHECK(entry.path().extension() != ".tmp");
