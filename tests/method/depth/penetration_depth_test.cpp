@@ -205,7 +205,7 @@ TEST_CASE("depth: the border search rejects on hashed boxes only in the step the
   CHECK(missed > 0);
 }
 
-TEST_CASE("depth: a surface query meets the same triangles whichever order they were hashed in", "[depth]") {
+TEST_CASE("depth: a surface query meets the same triangles whichever order they were hashed in", "[depth][threads]") {
   // A query takes only its body's run of a bucket when the triangles went in
   // by ascending id (the cycle's order, hash_all's with bodies ascending, on
   // any thread count); hashed in another order it tests every entry. Three

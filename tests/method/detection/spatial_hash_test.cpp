@@ -516,7 +516,7 @@ TEST_CASE("spatial hash: a dense grid lists exactly each cell's items in inserti
 
 TEST_CASE("spatial hash: a dense grid too large or not finite is refused and the table hashes; a box outside the "
           "grid is refused; a search reaching outside counts every cell and visits the inside ones",
-          "[hash][dense]") {
+          "[hash][dense][threads]") {
   SpatialHash table(0.5, 31, HashFunction::Mixed);
   // [0, 2]^3 spans cells 0..4 on each axis: 125 cells.
   CHECK(table.begin_epoch_dense(Vec3(0, 0, 0), Vec3(2, 2, 2), 125));

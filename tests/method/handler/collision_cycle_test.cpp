@@ -344,7 +344,7 @@ TEST_CASE("threads change nothing when a cycle spans moving steps and re-detects
 }
 
 TEST_CASE("the cycle counts its memory: every per-tet array, a scratch more a thread, its contacts",
-          "[cycle][memory]") {
+          "[cycle][memory][threads]") {
   const test::TestScene scene = test::collision_scenes()[0].second;
   World w = build_world(scene);
   std::size_t tets = 0;
@@ -611,7 +611,7 @@ TEST_CASE("a refresh longer than a step cannot stall the cycle: one task a step,
 }
 
 TEST_CASE("a kept table finds exactly what a fresh hash finds, cycle after cycle, for less hashing work",
-          "[cycle][keep_table]") {
+          "[cycle][keep_table][threads]") {
   // One cycle a step, the last body moved between steps: a little (0.02
   // cell, a step's motion; most of its tets stay in their cells), then far (2.3 cells: every
   // one of its tets leaves them). keep_table's contacts must be the paper's
