@@ -13,8 +13,12 @@
 /// own reads overlap better) 2.9-4.5 in minutes of 1.24-1.46x
 /// (micro_collision_cycle BM_ThreadsPaired beside micro_machine_scaling
 /// BM_Handover/4096, then BM_ThreadsPaired's handover_before and
-/// handover_after). A shared-cache minute has not been seen with this form
-/// yet. So a time taken on two threads is read with this ratio beside it.
+/// handover_after). With this form, a later evening: 1.09-1.29 in a minute
+/// of 1.77-2.07x (dog pair 1.77, plates20 2.07, settled 2.01, dog moving
+/// 1.87), 1.21-1.61 at 1.60-1.87x the minute before; but also 1.5-2.9 at
+/// 1.58-1.79x in a minute when the host slowed the one-thread cycle to 1.5
+/// times its usual time. So the ratio places a time taken on two threads;
+/// it does not predict it, and such a time is read with it beside it.
 ///
 /// Contract: measure_handover(pool, bytes, rounds) fills `bytes` (rounded down
 /// to whole 64-byte lines, at least one) with a new value in every line,
