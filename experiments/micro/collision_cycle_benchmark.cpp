@@ -142,6 +142,15 @@ const Fixture& plates20_settled() {
   return settled;
 }
 
+// A copy of plates20_settled() a benchmark may change.
+Fixture settled_copy() { return {plates20_settled().scene, clone_world(plates20_settled().world)}; }
+
+// The paired benchmarks' scene argument: 0 the dog pair, 1 plates20 as
+// built, 2 plates20 after 300 steps (a copy).
+Fixture paired_scene(std::int64_t scene) {
+  return scene == 0 ? dog_pair() : (scene == 2 ? settled_copy() : plates20());
+}
+
 // The bodies the moving benchmarks move: every other one (dog_b; every
 // other plate of the stack).
 std::vector<char> every_other_body(const World& world) {
@@ -319,7 +328,7 @@ void BM_Plates20(benchmark::State& state) {
 BENCHMARK(BM_Plates20)->Args({0, 1})->Args({1, 1})->Args({0, 2})->Unit(benchmark::kMillisecond);
 
 void BM_Plates20Settled(benchmark::State& state) {
-  Fixture f{plates20_settled().scene, clone_world(plates20_settled().world)};
+  Fixture f = settled_copy();
   CollisionSettings settings = resolve_collision_settings(f.world, f.scene.collision, f.scene.world.dt_s);
   settings.threads = static_cast<int>(state.range(0));
   run_cycles(state, f, settings);
@@ -400,9 +409,7 @@ struct SideBySide {
 void BM_ThreadsPaired(benchmark::State& state) {
   const bool dogs = state.range(0) == 0;
   if (dogs && !have_dog_mesh(state)) return;
-  Fixture f = dogs ? dog_pair()
-                   : (state.range(0) == 2 ? Fixture{plates20_settled().scene, clone_world(plates20_settled().world)}
-                                          : plates20());
+  Fixture f = paired_scene(state.range(0));
   const std::vector<char> moving = every_other_body(f.world);
   const bool move = state.range(1) > 0;
   CollisionSettings one = resolve_collision_settings(f.world, f.scene.collision, f.scene.world.dt_s);
@@ -480,9 +487,7 @@ void BM_TwinCycles(benchmark::State& state) {
     state.SkipWithError("needs two CPUs");
     return;
   }
-  Fixture f = dogs ? dog_pair()
-                   : (state.range(0) == 2 ? Fixture{plates20_settled().scene, clone_world(plates20_settled().world)}
-                                          : plates20());
+  Fixture f = paired_scene(state.range(0));
   World twin = clone_world(f.world);
   CollisionSettings one = resolve_collision_settings(f.world, f.scene.collision, f.scene.world.dt_s);
   one.threads = 1;
@@ -572,7 +577,7 @@ BENCHMARK(BM_TwinCycles)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 void BM_SurfaceWholePaired(benchmark::State& state) {
   const bool dogs = state.range(0) == 0;
   if (dogs && !have_dog_mesh(state)) return;
-  Fixture f = dogs ? dog_pair() : Fixture{plates20_settled().scene, clone_world(plates20_settled().world)};
+  Fixture f = paired_scene(state.range(0));  // 0 or 2
   CollisionSettings settings = resolve_collision_settings(f.world, f.scene.collision, f.scene.world.dt_s);
   settings.threads = 1;
   CycleSchedule one_by_one, whole;

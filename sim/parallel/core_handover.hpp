@@ -16,7 +16,7 @@
 /// handover_after). With this form, a later evening: 1.09-1.29 in a minute
 /// of 1.77-2.07x (dog pair 1.77, plates20 2.07, settled 2.01, dog moving
 /// 1.87), 1.21-1.61 at 1.60-1.87x the minute before; but also 1.5-2.9 at
-/// 1.58-1.79x in a minute when the host slowed the one-thread cycle to 1.5
+/// 1.58-1.79x in a minute when the host slowed the one-thread cycle to 1.6
 /// times its usual time. So the ratio places a time taken on two threads;
 /// it does not predict it, and such a time is read with it beside it.
 ///
