@@ -26,7 +26,9 @@
 // hash: 0 = mixed (default), 1 = the paper's xor of primes. threads: the
 // cycle's collision.threads (its tet hashing, point queries and border depths
 // in parallel; the same contacts on every count, which the counter
-// `colliding` shows). ms_<stage>: the cycle's wall time per stage, per cycle.
+// `colliding` shows; above one thread, handover_before and handover_after give
+// the vCPUs' handover ratio around the timed loop, as in BM_ThreadsPaired).
+// ms_<stage>: the cycle's wall time per stage, per cycle.
 // BM_ThreadsPaired and BM_OrderPaired measure two cycles side by side (2
 // threads against 1; the detector's tets, or the dog pair itself, ordered
 // along a Morton curve against the file's order), BM_HashFloorPaired the
@@ -252,11 +254,16 @@ void run_cycles(benchmark::State& state, Fixture& f, CollisionSettings settings,
   const CellFigures cells = cell_figures(f.world, settings.detection);
   state.counters["bucket_share"] = cells.bucket_share;
   state.counters["cells_per_tet"] = cells.cells_per_tet;
+  // Above one thread the times depend on the vCPUs' placement: the handover
+  // ratio before and after the loop says which regime the run was in (see
+  // BM_ThreadsPaired; 0: not measured).
+  const bool threaded = settings.threads > 1;
   CollisionCycle cycle(f.world, std::move(settings), DetectionMode::SpatialHash, schedule);
   std::size_t colliding = 0;
   const std::size_t tets = total_tets(f.world);
   StageCosts stages;  // summed over the iterations
   std::int64_t calls = 0;
+  if (threaded) state.counters["handover_before"] = probe_handover_ratio().value_or(0.0);
   for (auto _ : state) {
     if (!moving.empty()) {
       state.PauseTiming();
@@ -268,6 +275,7 @@ void run_cycles(benchmark::State& state, Fixture& f, CollisionSettings settings,
     benchmark::DoNotOptimize(cycle.contacts().data());
     add_stage_ms(stages, cycle);
   }
+  if (threaded) state.counters["handover_after"] = probe_handover_ratio().value_or(0.0);
   // ms_<stage>: the cycle's wall time per stage (its steady clock, read at
   // stage changes), per cycle: where a thread count's speed-up is limited.
   for (std::size_t s = 0; s < kCostStages; ++s) {
