@@ -193,6 +193,23 @@ class Curves(unittest.TestCase):
         noisy = [(n, n * (1.1 if k % 2 else 0.9), None, None, None, 1) for k, n in enumerate((1e4, 1e5, 1e6, 1e7))]
         self.assertLess(abs(scaling.exponent(noisy)[0] - 1.0), 0.05)
 
+    def test_scaling_work_exponent_is_per_step_and_apart_from_the_time(self):
+        # Work grows as tets^1.0 and time as tets^1.2: the caption gives both, each over its own fit. Work is
+        # divided by the run's steps, so a size run for twice the steps does not bend the fit.
+        runs = [run(f"n{n}", "full", "none", overrides=[f"n={n}"], tets=n, handling_ms=handling(1e-3 * n ** 1.2),
+                    work_units_total=7.0 * n * 40 * (2 if n == 4_000 else 1)) for n in (1_000, 4_000, 16_000)]
+        runs[1].record["steps"] = 80
+        [(legend, rs)] = scaling.curves(runs).items()
+        self.assertEqual(scaling.work_points(rs), [(1_000, 7_000.0), (4_000, 28_000.0), (16_000, 112_000.0)])
+        self.assertAlmostEqual(scaling.exponent(scaling.work_points(rs))[0], 1.0, places=9)
+        runs.append(run("n64k", "full", "none", overrides=["n=64000"], tets=64_000, handling_ms=handling(1.0)))
+        [(legend, rs)] = scaling.curves(runs).items()
+        self.assertEqual(len(scaling.work_points(rs)), 3)  # a size without the count is left out, not taken as 0
+        with tempfile.TemporaryDirectory() as out:
+            section = scaling.draw(context(out, runs[:3]), runs[:3])
+            self.assertIn("full: 1.20 over 1000..16000 tets (work units a step: 1.00 over 1000..16000 tets)",
+                          section.caption)
+
     def test_scaling_points_are_medians(self):
         runs = [run(f"4 s{s}", seed=s, overrides=JITTER_SETS + ["n=4"], tets=400,
                     handling_ms=handling(1.0 + 0.1 * s)) for s in SEEDS]

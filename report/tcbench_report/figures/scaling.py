@@ -6,7 +6,10 @@ A size with repeats (runs differing only by seed) is one point: the median of
 their p50 with its bootstrap 95 % interval, and the median of their p99.
 A curve of three or more sizes carries the exponent of its p50 (the slope of
 a least-squares line through log p50 against log tets) and the range it was
-fitted over, in the legend and the caption.
+fitted over, in the legend and the caption. The caption gives beside it the
+exponent of the work units a step, which are counted, not timed: where the
+time's exponent is the larger, a unit of work took longer at the larger
+sizes (on the machine that ran it), rather than more work being done.
 """
 import math
 from collections import defaultdict
@@ -47,6 +50,19 @@ def points(runs):
     return sorted(out, key=lambda p: p[0])
 
 
+def work_points(runs):
+    """[(tets, work units a step)] of a curve's runs, one per configuration by size: the median over its repeats
+    of summary.work_units_total over the run's steps; a configuration with a run that lacks either is left out."""
+    out = []
+    for group in statistics.repeats(runs):
+        total = [r.metric("work_units_total") for r in group]
+        steps = [r.record.get("steps") for r in group]
+        if all(w is not None for w in total) and all(isinstance(n, int) and n > 0 for n in steps):
+            out.append((statistics.median([r.dynamic_tets() for r in group]),
+                        statistics.median([w / n for w, n in zip(total, steps)])))
+    return sorted(out)
+
+
 def exponent(pts):
     """(slope, smallest tets, largest tets) of log p50 against log tets over points (tets, p50, ...), or None
     for fewer than three distinct sizes with a positive p50 (two points fit any power law exactly)."""
@@ -72,7 +88,9 @@ def draw(ctx, runs):
         label = f"{legend} p50"
         if fit:
             label += f" (exponent {fit[0]:.2f})"
-            fits.append(f"{legend}: {fit[0]:.2f} over {fit[1]}..{fit[2]} tets")
+            work = exponent(work_points(rs))
+            fits.append(f"{legend}: {fit[0]:.2f} over {fit[1]}..{fit[2]} tets"
+                        + (f" (work units a step: {work[0]:.2f} over {work[1]}..{work[2]} tets)" if work else ""))
         # One colour per curve, its p99 dotted in the same colour.
         [line] = ax.plot([p[0] for p in pts], [p[1] for p in pts], "o-", color=f"C{k % 10}", label=label)
         for tets, p50, lo, hi, _, _ in pts:
@@ -93,6 +111,9 @@ def draw(ctx, runs):
                     "Collision handling time per step, its median (p50, solid) and p99 (dotted), against the "
                     "number of tetrahedra of the objects that change shape (integrated or latent-driven)."
                     + (" Exponent of the p50 (least-squares slope of log time against log tets): " + "; ".join(fits)
-                       + "." if fits else ""), [r for rs in lines.values() for r in rs],
+                       + ". Work units count the cycle's operations, the same on every machine: where time grows"
+                       " faster than work, a unit of work took longer at the larger sizes (one cause: tables that"
+                       " outgrow the caches)." if fits else ""),
+                    [r for rs in lines.values() for r in rs],
                     "each point is their median (the p50's bootstrap 95 % interval as a bar; the p99 the median of "
                     "theirs)")
