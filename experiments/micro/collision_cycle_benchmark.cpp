@@ -45,6 +45,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <initializer_list>
+#include <optional>
 #include <set>
 #include <string>
 #include <thread>
@@ -357,13 +358,31 @@ struct SideBySide {
   double seconds[2] = {0.0, 0.0};
   StageCosts stages[2];
   std::int64_t calls = 0;  ///< iterations run by loop()
+  /// When set (two CPUs), cycle 0 runs pinned to first_on[call % 2]: one
+  /// thread's time taken on both CPUs alike, and apart in first_seconds_on,
+  /// so one vCPU slowed by a neighbour on the host can neither flatter nor
+  /// spoil a ratio against cycle 1, which runs unpinned.
+  std::vector<int> first_on;
+  double first_seconds_on[2] = {0.0, 0.0};
+  std::string pin_error;  ///< set when pinning failed; loop() stops with it
 
   void run(CollisionCycle* cycles[2], World* worlds[2], std::int64_t call) {
     for (int k = 0; k < 2; ++k) {
       const int which = static_cast<int>((call + k) % 2);
+      const bool pinned = which == 0 && first_on.size() == 2;
+      std::optional<ScopedPin> pin;
+      if (pinned) {
+        pin.emplace(first_on[static_cast<std::size_t>(call % 2)]);
+        if (!pin->error().empty()) {
+          pin_error = pin->error();
+          return;
+        }
+      }
       const auto start = std::chrono::steady_clock::now();
       full_cycle(*cycles[which], *worlds[which]);
-      seconds[which] += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      seconds[which] += s;
+      if (pinned) first_seconds_on[call % 2] += s;
       add_stage_ms(stages[which], *cycles[which]);
     }
   }
@@ -381,6 +400,10 @@ struct SideBySide {
       }
       run(cycles, worlds, calls);
       ++calls;
+      if (!pin_error.empty()) {
+        state.SkipWithError(pin_error.c_str());
+        return false;
+      }
       if (cycles[0]->contacts().size() != cycles[1]->contacts().size()) {
         state.SkipWithError(mismatch);
         return false;
@@ -411,7 +434,19 @@ struct SideBySide {
 // speedup_<stage> the same for each stage (the cycle's stage clock); ms_1t,
 // ms_2t per cycle. handover_before and handover_after: the vCPUs' handover
 // ratio (probe_handover_ratio) before and after the timed loop; the
-// speed-up depends on it (core_handover.hpp).
+// speed-up depends on it (core_handover.hpp). The one-thread cycle runs
+// pinned, to the first two allowed CPUs by turns (the two-thread one
+// unpinned): ms_1t_cpu0 and ms_1t_cpu1 are its times a cycle on each,
+// cpu_ratio the second over the first, and speedup_2t_vs_faster the faster
+// CPU's one-thread time over ms_2t. Where one vCPU runs slower (a neighbour
+// on the host; cpu_ratio far from 1), speedup_2t is the speed-up over a
+// thread the scheduler could have put on either, and speedup_2t_vs_faster
+// over the best one thread got in these minutes: unpinned, the one-thread
+// side took whichever CPU it ran on, and the ratio said more about the
+// host than about the split. 6 Dec, dog pair: pinned by turns, cpu_ratio
+// 1.53, speedup_2t 1.51, speedup_2t_vs_faster 1.19; unpinned, an hour
+// before, 1.70, with a one-thread time (12.2 ms) near the slower CPU's
+// (12.0 ms, BM_TwinCycles in the same run; 7.3 ms on the faster).
 // micro_machine_scaling gives the machine's own ratio for kinds of work
 // beside it. Stops with an error if the two cycles' contacts differ.
 void BM_ThreadsPaired(benchmark::State& state) {
@@ -429,6 +464,8 @@ void BM_ThreadsPaired(benchmark::State& state) {
   CollisionCycle* both[2] = {&cycles[0], &cycles[1]};
   World* worlds[2] = {&f.world, &f.world};
   SideBySide pair;  // 0: one thread, 1: two
+  const std::vector<int> cpus = allowed_cpus();
+  if (cpus.size() >= 2) pair.first_on = {cpus[0], cpus[1]};
   // The vCPUs' placement before and after (sim/parallel/core_handover.hpp):
   // near 1, the cores hand each other lines as cheaply as they keep their
   // own; 2 and more, they do not, and the split cycle loses to it. 0: not
@@ -442,6 +479,15 @@ void BM_ThreadsPaired(benchmark::State& state) {
   state.counters["speedup_2t"] = pair.seconds[1] > 0.0 ? pair.seconds[0] / pair.seconds[1] : 0.0;
   state.counters["ms_1t"] = pair.ms_per_call(0);
   state.counters["ms_2t"] = pair.ms_per_call(1);
+  if (!pair.first_on.empty() && pair.calls >= 2) {
+    // Calls alternate between the CPUs, the first from call 0.
+    const double on[2] = {1e3 * pair.first_seconds_on[0] / static_cast<double>((pair.calls + 1) / 2),
+                          1e3 * pair.first_seconds_on[1] / static_cast<double>(pair.calls / 2)};
+    state.counters["ms_1t_cpu0"] = on[0];
+    state.counters["ms_1t_cpu1"] = on[1];
+    state.counters["cpu_ratio"] = on[1] / on[0];
+    state.counters["speedup_2t_vs_faster"] = std::min(on[0], on[1]) / pair.ms_per_call(1);
+  }
   state.counters["colliding"] = static_cast<double>(cycles[0].contacts().size());
   // speedup_<stage>: the same ratio for each stage that took time (the
   // serial ones, propagate and forces, show ~1).
