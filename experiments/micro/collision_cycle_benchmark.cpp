@@ -40,6 +40,7 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -358,33 +359,52 @@ struct SideBySide {
   double seconds[2] = {0.0, 0.0};
   StageCosts stages[2];
   std::int64_t calls = 0;  ///< iterations run by loop()
-  /// When set (two CPUs), cycle 0 runs pinned to first_on[call % 2]: one
-  /// thread's time taken on both CPUs alike, and apart in first_seconds_on,
-  /// so one vCPU slowed by a neighbour on the host can neither flatter nor
-  /// spoil a ratio against cycle 1, which runs unpinned.
+  /// When set (two CPUs), cycle 0 runs pinned to first_on[(call / 2) % 2],
+  /// so its time is taken on both CPUs alike, each CPU's turns first and
+  /// second as often, and is kept apart per CPU (first_seconds_on,
+  /// first_calls_on): the one-thread reference is then not whichever CPU
+  /// the scheduler chose, which matters where one vCPU runs slower than the
+  /// other. Where a pin is refused, pinning stops (pin_refused) and the
+  /// rest runs as the scheduler places it.
   std::vector<int> first_on;
   double first_seconds_on[2] = {0.0, 0.0};
-  std::string pin_error;  ///< set when pinning failed; loop() stops with it
+  std::int64_t first_calls_on[2] = {0, 0};
+  bool pin_refused = false;
 
   void run(CollisionCycle* cycles[2], World* worlds[2], std::int64_t call) {
     for (int k = 0; k < 2; ++k) {
       const int which = static_cast<int>((call + k) % 2);
-      const bool pinned = which == 0 && first_on.size() == 2;
+      const std::size_t cpu = static_cast<std::size_t>((call / 2) % 2);
       std::optional<ScopedPin> pin;
-      if (pinned) {
-        pin.emplace(first_on[static_cast<std::size_t>(call % 2)]);
+      if (which == 0 && first_on.size() == 2 && !pin_refused) {
+        pin.emplace(first_on[cpu]);
         if (!pin->error().empty()) {
-          pin_error = pin->error();
-          return;
+          pin_refused = true;
+          pin.reset();
+        } else if (k == 1) {
+          // After a pooled cycle its worker polls for up to poll_us() before
+          // it blocks: let it, untimed, so the pinned cycle does not share a
+          // core with it only on the turns that follow.
+          std::this_thread::sleep_for(std::chrono::microseconds(2 * WorkerPool::poll_us()));
         }
       }
       const auto start = std::chrono::steady_clock::now();
       full_cycle(*cycles[which], *worlds[which]);
       const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       seconds[which] += s;
-      if (pinned) first_seconds_on[call % 2] += s;
+      if (pin) {
+        first_seconds_on[cpu] += s;
+        ++first_calls_on[cpu];
+      }
       add_stage_ms(stages[which], *cycles[which]);
     }
+  }
+  /// Cycle 0's pinned time a call on each CPU, ms, where every call of it
+  /// was pinned and both CPUs had turns; else nothing.
+  std::optional<std::array<double, 2>> first_ms_on() const {
+    if (first_on.size() != 2 || pin_refused || first_calls_on[0] == 0 || first_calls_on[1] == 0) return std::nullopt;
+    return std::array<double, 2>{1e3 * first_seconds_on[0] / static_cast<double>(first_calls_on[0]),
+                                 1e3 * first_seconds_on[1] / static_cast<double>(first_calls_on[1])};
   }
   /// The benchmark's loop: each iteration, if `moves`, first calls
   /// move(calls) untimed, then runs both cycles; stops with `mismatch` as
@@ -400,10 +420,6 @@ struct SideBySide {
       }
       run(cycles, worlds, calls);
       ++calls;
-      if (!pin_error.empty()) {
-        state.SkipWithError(pin_error.c_str());
-        return false;
-      }
       if (cycles[0]->contacts().size() != cycles[1]->contacts().size()) {
         state.SkipWithError(mismatch);
         return false;
@@ -435,18 +451,17 @@ struct SideBySide {
 // ms_2t per cycle. handover_before and handover_after: the vCPUs' handover
 // ratio (probe_handover_ratio) before and after the timed loop; the
 // speed-up depends on it (core_handover.hpp). The one-thread cycle runs
-// pinned, to the first two allowed CPUs by turns (the two-thread one
-// unpinned): ms_1t_cpu0 and ms_1t_cpu1 are its times a cycle on each,
-// cpu_ratio the second over the first, and speedup_2t_vs_faster the faster
-// CPU's one-thread time over ms_2t. Where one vCPU runs slower (a neighbour
-// on the host; cpu_ratio far from 1), speedup_2t is the speed-up over a
-// thread the scheduler could have put on either, and speedup_2t_vs_faster
-// over the best one thread got in these minutes: unpinned, the one-thread
-// side took whichever CPU it ran on, and the ratio said more about the
-// host than about the split. 6 Dec, dog pair: pinned by turns, cpu_ratio
-// 1.53, speedup_2t 1.51, speedup_2t_vs_faster 1.19; unpinned, an hour
-// before, 1.70, with a one-thread time (12.2 ms) near the slower CPU's
-// (12.0 ms, BM_TwinCycles in the same run; 7.3 ms on the faster).
+// pinned to the first two allowed CPUs by turns (SideBySide::first_on; the
+// two-thread one, which uses both CPUs anyway, unpinned): ms_1t_cpu0 and
+// ms_1t_cpu1 are its times a cycle on each, cpu_ratio the second over the
+// first, speedup_2t the mean of the two over ms_2t, and
+// speedup_2t_vs_faster the faster CPU's over ms_2t. Where one vCPU runs
+// slower than the other (a neighbour on the host; cpu_ratio far from 1), an
+// unpinned one-thread side would take whichever CPU it was given, and the
+// ratio would say more about the host than about the split
+// (docs/performance.md, "Two threads"). pinned: 1 where every one-thread
+// cycle ran pinned, 0 where a pin was refused (then speedup_2t is the sums'
+// ratio, as scheduled, and the per-CPU counters are left out).
 // micro_machine_scaling gives the machine's own ratio for kinds of work
 // beside it. Stops with an error if the two cycles' contacts differ.
 void BM_ThreadsPaired(benchmark::State& state) {
@@ -479,14 +494,15 @@ void BM_ThreadsPaired(benchmark::State& state) {
   state.counters["speedup_2t"] = pair.seconds[1] > 0.0 ? pair.seconds[0] / pair.seconds[1] : 0.0;
   state.counters["ms_1t"] = pair.ms_per_call(0);
   state.counters["ms_2t"] = pair.ms_per_call(1);
-  if (!pair.first_on.empty() && pair.calls >= 2) {
-    // Calls alternate between the CPUs, the first from call 0.
-    const double on[2] = {1e3 * pair.first_seconds_on[0] / static_cast<double>((pair.calls + 1) / 2),
-                          1e3 * pair.first_seconds_on[1] / static_cast<double>(pair.calls / 2)};
-    state.counters["ms_1t_cpu0"] = on[0];
-    state.counters["ms_1t_cpu1"] = on[1];
-    state.counters["cpu_ratio"] = on[1] / on[0];
-    state.counters["speedup_2t_vs_faster"] = std::min(on[0], on[1]) / pair.ms_per_call(1);
+  state.counters["pinned"] = pair.first_ms_on() ? 1.0 : 0.0;
+  if (const auto on = pair.first_ms_on()) {
+    state.counters["ms_1t_cpu0"] = (*on)[0];
+    state.counters["ms_1t_cpu1"] = (*on)[1];
+    state.counters["cpu_ratio"] = (*on)[1] / (*on)[0];
+    // Over the mean of the two CPUs' times, as if one thread ran on each
+    // half the time, whatever the turns' counts.
+    state.counters["speedup_2t"] = 0.5 * ((*on)[0] + (*on)[1]) / pair.ms_per_call(1);
+    state.counters["speedup_2t_vs_faster"] = std::min((*on)[0], (*on)[1]) / pair.ms_per_call(1);
   }
   state.counters["colliding"] = static_cast<double>(cycles[0].contacts().size());
   // speedup_<stage>: the same ratio for each stage that took time (the

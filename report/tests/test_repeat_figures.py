@@ -202,13 +202,23 @@ class Curves(unittest.TestCase):
         [(legend, rs)] = scaling.curves(runs).items()
         self.assertEqual(scaling.work_points(rs), [(1_000, 7_000.0), (4_000, 28_000.0), (16_000, 112_000.0)])
         self.assertAlmostEqual(scaling.exponent(scaling.work_points(rs))[0], 1.0, places=9)
-        runs.append(run("n64k", "full", "none", overrides=["n=64000"], tets=64_000, handling_ms=handling(1.0)))
+        # A size without the count is left out of the work fit, not taken as 0: each fit over its own sizes.
+        runs.append(run("n64k", "full", "none", overrides=["n=64000"], tets=64_000,
+                        handling_ms=handling(1e-3 * 64_000 ** 1.2)))
         [(legend, rs)] = scaling.curves(runs).items()
-        self.assertEqual(len(scaling.work_points(rs)), 3)  # a size without the count is left out, not taken as 0
+        self.assertEqual(len(scaling.work_points(rs)), 3)
         with tempfile.TemporaryDirectory() as out:
-            section = scaling.draw(context(out, runs[:3]), runs[:3])
-            self.assertIn("full: 1.20 over 1000..16000 tets (work units a step: 1.00 over 1000..16000 tets)",
+            section = scaling.draw(context(out, runs), runs)
+            self.assertIn("full: 1.20 over 1000..64000 tets (work units a step: 1.00 over 1000..16000 tets).",
                           section.caption)
+            self.assertIn("Work units count", section.caption)
+        # Without work counts the time's exponent stands alone, with nothing said about work.
+        bare = [run(f"b{n}", "full", "none", overrides=[f"n={n}"], tets=n, handling_ms=handling(1e-3 * n))
+                for n in (1_000, 4_000, 16_000)]
+        with tempfile.TemporaryDirectory() as out:
+            caption = scaling.draw(context(out, bare), bare).caption
+            self.assertIn("full: 1.00 over 1000..16000 tets.", caption)
+            self.assertNotIn("work units", caption.lower())
 
     def test_scaling_points_are_medians(self):
         runs = [run(f"4 s{s}", seed=s, overrides=JITTER_SETS + ["n=4"], tets=400,

@@ -82,6 +82,7 @@ def draw(ctx, runs):
         return ctx.missing(TITLE, "no scene of the sweeps declaring this figure was run at two or more sizes")
     fig, ax = plt.subplots(figsize=(8.5, 4))
     fits = []
+    worked = False  # some fit has a work exponent beside it
     for k, (legend, rs) in enumerate(lines.items()):
         pts = points(rs)
         fit = exponent(pts)
@@ -89,6 +90,7 @@ def draw(ctx, runs):
         if fit:
             label += f" (exponent {fit[0]:.2f})"
             work = exponent(work_points(rs))
+            worked = worked or work is not None
             fits.append(f"{legend}: {fit[0]:.2f} over {fit[1]}..{fit[2]} tets"
                         + (f" (work units a step: {work[0]:.2f} over {work[1]}..{work[2]} tets)" if work else ""))
         # One colour per curve, its p99 dotted in the same colour.
@@ -111,9 +113,10 @@ def draw(ctx, runs):
                     "Collision handling time per step, its median (p50, solid) and p99 (dotted), against the "
                     "number of tetrahedra of the objects that change shape (integrated or latent-driven)."
                     + (" Exponent of the p50 (least-squares slope of log time against log tets): " + "; ".join(fits)
-                       + ". Work units count the cycle's operations, the same on every machine: where time grows"
+                       + "." if fits else "")
+                    + (" Work units count the cycle's operations, the same on every machine: where time grows"
                        " faster than work, a unit of work took longer at the larger sizes (one cause: tables that"
-                       " outgrow the caches)." if fits else ""),
+                       " outgrow the caches)." if worked else ""),
                     [r for rs in lines.values() for r in rs],
                     "each point is their median (the p50's bootstrap 95 % interval as a bar; the p99 the median of "
                     "theirs)")
