@@ -491,17 +491,18 @@ void BM_ThreadsPaired(benchmark::State& state) {
                  "the 1- and 2-thread cycles found different contacts"))
     return;
   state.counters["handover_after"] = handover_ratio();
-  state.counters["speedup_2t"] = pair.seconds[1] > 0.0 ? pair.seconds[0] / pair.seconds[1] : 0.0;
+  const auto on = pair.first_ms_on();
+  state.counters["pinned"] = on ? 1.0 : 0.0;
+  // Pinned: over the mean of the two CPUs' times, as if one thread ran on
+  // each half the time, whatever the turns' counts; else the sums' ratio.
+  state.counters["speedup_2t"] = on ? 0.5 * ((*on)[0] + (*on)[1]) / pair.ms_per_call(1)
+                                    : (pair.seconds[1] > 0.0 ? pair.seconds[0] / pair.seconds[1] : 0.0);
   state.counters["ms_1t"] = pair.ms_per_call(0);
   state.counters["ms_2t"] = pair.ms_per_call(1);
-  state.counters["pinned"] = pair.first_ms_on() ? 1.0 : 0.0;
-  if (const auto on = pair.first_ms_on()) {
+  if (on) {
     state.counters["ms_1t_cpu0"] = (*on)[0];
     state.counters["ms_1t_cpu1"] = (*on)[1];
     state.counters["cpu_ratio"] = (*on)[1] / (*on)[0];
-    // Over the mean of the two CPUs' times, as if one thread ran on each
-    // half the time, whatever the turns' counts.
-    state.counters["speedup_2t"] = 0.5 * ((*on)[0] + (*on)[1]) / pair.ms_per_call(1);
     state.counters["speedup_2t_vs_faster"] = std::min((*on)[0], (*on)[1]) / pair.ms_per_call(1);
   }
   state.counters["colliding"] = static_cast<double>(cycles[0].contacts().size());
