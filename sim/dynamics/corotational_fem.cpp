@@ -7,6 +7,82 @@
 
 #include "sim/dynamics/rotation_extraction.hpp"
 
+// step()'s own solve is Eigen's ConjugateGradient with its matrix read by
+// blocks: Eigen's matrix-free interface (a matrix type whose product Eigen
+// asks us for) around the assembled system. Every other operation of the
+// solve is Eigen's, on the same values, so its iterates are what the
+// compressed matrix gives, bit for bit (tests/sim/dynamics/block_rows_test).
+namespace tcb {
+namespace {
+class BlockSystem;
+}  // namespace
+}  // namespace tcb
+
+template <>
+struct Eigen::internal::traits<tcb::BlockSystem> : traits<tcb::CorotationalFem::SparseMatrix> {};
+
+namespace tcb {
+namespace {
+
+class BlockSystem : public Eigen::EigenBase<BlockSystem> {
+ public:
+  using Scalar = double;
+  using RealScalar = double;
+  using StorageIndex = int;
+  enum { ColsAtCompileTime = Eigen::Dynamic, MaxColsAtCompileTime = Eigen::Dynamic, IsRowMajor = true };
+
+  BlockSystem(const CorotationalFem::SparseMatrix& system, const BlockRows& blocks)
+      : m_system(&system), m_blocks(&blocks), m_product(system.rows()) {}
+  Eigen::Index rows() const { return m_system->rows(); }
+  Eigen::Index cols() const { return m_system->cols(); }
+  const CorotationalFem::SparseMatrix& sparse() const { return *m_system; }
+
+  template <typename Rhs>
+  Eigen::Product<BlockSystem, Rhs, Eigen::AliasFreeProduct> operator*(const Eigen::MatrixBase<Rhs>& x) const {
+    return Eigen::Product<BlockSystem, Rhs, Eigen::AliasFreeProduct>(*this, x.derived());
+  }
+
+  // dst += alpha * A x, with A x's entries what Eigen's row loop sums, and
+  // the same final `dst(i) += alpha * sum` (SparseDenseProduct.h).
+  template <typename Dest>
+  void scale_and_add(Dest& dst, Eigen::Ref<const Eigen::VectorXd> x, double alpha) const {
+    multiply_block_rows(*m_blocks, m_system->outerIndexPtr(), m_system->innerIndexPtr(), m_system->valuePtr(),
+                        x.data(), m_product.data());
+    for (Eigen::Index i = 0; i < dst.size(); ++i) dst.coeffRef(i) += alpha * m_product[i];
+  }
+
+ private:
+  const CorotationalFem::SparseMatrix* m_system;
+  const BlockRows* m_blocks;
+  mutable Eigen::VectorXd m_product;  // scratch: one solve, one thread
+};
+
+// Eigen's Jacobi preconditioner, computed from the compressed matrix itself.
+class SystemDiagonal : public Eigen::DiagonalPreconditioner<double> {
+ public:
+  SystemDiagonal() = default;
+  SystemDiagonal& analyzePattern(const BlockSystem&) { return *this; }
+  SystemDiagonal& factorize(const BlockSystem& a) {
+    DiagonalPreconditioner::factorize(a.sparse());
+    return *this;
+  }
+  SystemDiagonal& compute(const BlockSystem& a) { return factorize(a); }
+};
+
+}  // namespace
+}  // namespace tcb
+
+namespace Eigen::internal {
+template <typename Rhs>
+struct generic_product_impl<tcb::BlockSystem, Rhs, SparseShape, DenseShape, GemvProduct>
+    : generic_product_impl_base<tcb::BlockSystem, Rhs, generic_product_impl<tcb::BlockSystem, Rhs>> {
+  template <typename Dest>
+  static void scaleAndAddTo(Dest& dst, const tcb::BlockSystem& lhs, const Rhs& rhs, const double& alpha) {
+    lhs.scale_and_add(dst, rhs, alpha);
+  }
+};
+}  // namespace Eigen::internal
+
 namespace tcb {
 
 CorotationalFem::CorotationalFem(const TetMesh& mesh, const std::vector<Vec3>& rest_m, const Material& material)
@@ -51,6 +127,8 @@ void CorotationalFem::build_pattern(std::size_t n) {
   m_system.resize(3 * n, 3 * n);
   m_system.setFromTriplets(entries.begin(), entries.end());
   m_system.makeCompressed();
+  m_blocks = block_rows_of({m_system.outerIndexPtr(), static_cast<std::size_t>(m_system.rows()) + 1},
+                           {m_system.innerIndexPtr(), static_cast<std::size_t>(m_system.nonZeros())});
 
   const int* outer = m_system.outerIndexPtr();
   const int* inner = m_system.innerIndexPtr();
@@ -153,16 +231,21 @@ bool CorotationalFem::begin_linear_step(std::span<const Vec3> x, std::span<const
   return true;
 }
 
-void CorotationalFem::multiply(const Eigen::VectorXd& v, Eigen::VectorXd& out) const { out.noalias() = m_system * v; }
+void CorotationalFem::multiply(Eigen::Ref<const Eigen::VectorXd> v, Eigen::Ref<Eigen::VectorXd> out) const {
+  // What `out.noalias() = m_system * v` gives, bit for bit, read by blocks.
+  multiply_block_rows(m_blocks, m_system.outerIndexPtr(), m_system.innerIndexPtr(), m_system.valuePtr(), v.data(),
+                      out.data());
+}
 
 Eigen::VectorXd CorotationalFem::diagonal() const { return m_system.diagonal(); }
 
 void CorotationalFem::step(std::span<Vec3> x, std::span<Vec3> v, std::span<const Vec3> f_ext, double dt) {
   begin_linear_step(x, v, f_ext, dt);
-  Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper, Eigen::DiagonalPreconditioner<double>> cg;
+  const BlockSystem system(m_system, m_blocks);
+  Eigen::ConjugateGradient<BlockSystem, Eigen::Lower | Eigen::Upper, SystemDiagonal> cg;
   cg.setTolerance(m_material.cg_tolerance);
   cg.setMaxIterations(m_material.cg_max_iterations);
-  cg.compute(m_system);
+  cg.compute(system);
   m_velocity = cg.solveWithGuess(m_rhs, m_velocity);
   end_linear_step(x, v, m_velocity, dt, static_cast<int>(cg.iterations()), cg.info() == Eigen::Success);
 }

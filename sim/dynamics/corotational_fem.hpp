@@ -13,11 +13,13 @@
 /// built once, solved by Jacobi-preconditioned conjugate gradients warm-started
 /// from v. Degenerate (flat) tets get no stiffness and no mass.
 /// Cost per step: O(T) assembly + CG iterations over a matrix with ~45 nonzeros
-/// per row.
+/// per row. multiply() reads that matrix by 3x3 blocks (block_rows.hpp), with
+/// Eigen's product's result bit for bit.
 
 #include <Eigen/Geometry>
 #include <Eigen/SparseCore>
 
+#include "sim/dynamics/block_rows.hpp"
 #include "sim/dynamics/elastic_model.hpp"
 
 namespace tcb {
@@ -33,9 +35,14 @@ class CorotationalFem final : public ElasticModel {
   const std::vector<double>& vertex_masses_kg() const override { return m_mass_kg; }
   bool begin_linear_step(std::span<const Vec3> x_m, std::span<const Vec3> v_m_per_s, std::span<const Vec3> f_ext_n,
                          double dt_s) override;
-  void multiply(const Eigen::VectorXd& v, Eigen::VectorXd& out) const override;
+  void multiply(Eigen::Ref<const Eigen::VectorXd> v, Eigen::Ref<Eigen::VectorXd> out) const override;
   const Eigen::VectorXd& rhs() const override { return m_rhs; }
   Eigen::VectorXd diagonal() const override;
+  using SparseMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor, int>;
+  /// A as begin_linear_step() assembled it, compressed: what step()'s own
+  /// solve uses, and what multiply() reads by blocks (tests and benchmarks
+  /// compare the two products).
+  const SparseMatrix& system() const { return m_system; }
   double solver_tolerance() const override { return m_material.cg_tolerance; }
   int solver_max_iterations() const override { return m_material.cg_max_iterations; }
 
@@ -47,7 +54,6 @@ class CorotationalFem final : public ElasticModel {
     std::array<Vec3, 4> rest_m;
     Eigen::Quaterniond rotation;           // warm start for the next extraction
   };
-  using SparseMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor, int>;
 
   Eigen::Matrix3d deformation_gradient(const Element& e, std::span<const Vec3> x) const;
   static Eigen::Matrix3d rotation_of(const Element& e, const Eigen::Matrix3d& f);
@@ -57,6 +63,7 @@ class CorotationalFem final : public ElasticModel {
   std::vector<Element> m_elements;
   std::vector<double> m_mass_kg;
   SparseMatrix m_system;
+  BlockRows m_blocks;  // m_system's pattern by 3x3 blocks, for multiply()
   // For each element, the value offsets of its 16 3x3 blocks: entry
   // (i*4 + j)*3 + r is where row 3*v_i + r, column 3*v_j starts.
   std::vector<std::array<int, 48>> m_block_slots;

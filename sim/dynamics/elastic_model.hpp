@@ -42,8 +42,10 @@ class ElasticModel {
   /// model's integrator has no such form (explicit velocity Verlet).
   virtual bool begin_linear_step(std::span<const Vec3> x_m, std::span<const Vec3> v_m_per_s,
                                  std::span<const Vec3> f_ext_n, double dt_s) = 0;
-  /// out = A v (after begin_linear_step).
-  virtual void multiply(const Eigen::VectorXd& v, Eigen::VectorXd& out) const = 0;
+  /// out = A v (after begin_linear_step); out has v's size and does not
+  /// overlap it. Segments of a longer vector bind without a copy (a coupled
+  /// solve multiplies each body's part of its unknowns in place).
+  virtual void multiply(Eigen::Ref<const Eigen::VectorXd> v, Eigen::Ref<Eigen::VectorXd> out) const = 0;
   /// b, and the diagonal of A (for preconditioning).
   virtual const Eigen::VectorXd& rhs() const = 0;
   virtual Eigen::VectorXd diagonal() const = 0;

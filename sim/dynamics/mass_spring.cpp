@@ -116,7 +116,7 @@ bool MassSpring::begin_linear_step(std::span<const Vec3> x, std::span<const Vec3
   return true;
 }
 
-void MassSpring::multiply(const Eigen::VectorXd& v, Eigen::VectorXd& out) const {
+void MassSpring::multiply(Eigen::Ref<const Eigen::VectorXd> v, Eigen::Ref<Eigen::VectorXd> out) const {
   out = m_diagonal.cwiseProduct(v);
 }
 

@@ -37,7 +37,7 @@ class MassSpring final : public ElasticModel {
   const std::vector<double>& vertex_masses_kg() const override { return m_mass_kg; }
   bool begin_linear_step(std::span<const Vec3> x_m, std::span<const Vec3> v_m_per_s, std::span<const Vec3> f_ext_n,
                          double dt_s) override;
-  void multiply(const Eigen::VectorXd& v, Eigen::VectorXd& out) const override;
+  void multiply(Eigen::Ref<const Eigen::VectorXd> v, Eigen::Ref<Eigen::VectorXd> out) const override;
   const Eigen::VectorXd& rhs() const override { return m_rhs; }
   Eigen::VectorXd diagonal() const override { return m_diagonal; }
   double solver_tolerance() const override { return m_material.cg_tolerance; }

@@ -141,8 +141,7 @@ class Component {
     out.resize(v.size());
     for (const std::int32_t b : m_bodies) {
       const auto n = static_cast<Eigen::Index>(3 * m_world.bodies[b].x_m.size());
-      m_world.bodies[b].model->multiply(v.segment(m_offset[b], n), m_scratch);
-      out.segment(m_offset[b], n) = m_scratch;
+      m_world.bodies[b].model->multiply(v.segment(m_offset[b], n), out.segment(m_offset[b], n));
     }
     for (std::size_t l = 0; l < m_links.size(); ++l) {
       if (!m_active[l]) continue;
@@ -217,7 +216,7 @@ class Component {
   double m_dt;
   std::vector<std::ptrdiff_t> m_offset;  // per body: first unknown, -1 when not in the component
   std::size_t m_size = 0;
-  Eigen::VectorXd m_rhs, m_diagonal, m_scratch;
+  Eigen::VectorXd m_rhs, m_diagonal;
   std::vector<char> m_active;
 };
 
