@@ -1,5 +1,6 @@
 #include "sim/world/coupled_solve.hpp"
 
+#include <array>
 #include <numeric>
 #include <stdexcept>
 
@@ -20,6 +21,15 @@ class Component {
       size += 3 * world.bodies[b].x_m.size();
     }
     m_size = size;
+    // Each link's unknowns, looked up once: the CG's products read them every
+    // iteration.
+    m_unknowns.reserve(m_links.size());
+    for (const ContactLink* link : m_links) {
+      LinkUnknowns u;
+      u.point = unknown(link->point_body, link->vertex);
+      for (int k = 0; k < 4; ++k) u.tet[k] = unknown(link->tet_body, link->tet_vertices[k]);
+      m_unknowns.push_back(u);
+    }
   }
 
   ContactSolveStats solve() {
@@ -101,15 +111,14 @@ class Component {
     return b.v_m_per_s[vertex];
   }
 
-  // J v over the unknowns only.
-  Vec3 unknown_part(const ContactLink& link, const Eigen::VectorXd& v) const {
+  // J v over the unknowns only, for link l.
+  Vec3 unknown_part(std::size_t l, const Eigen::VectorXd& v) const {
+    const ContactLink& link = *m_links[l];
+    const LinkUnknowns& u = m_unknowns[l];
     Vec3 g = Vec3::Zero();
-    const std::ptrdiff_t p = unknown(link.point_body, link.vertex);
-    if (p >= 0) g += v.segment<3>(p);
-    for (int k = 0; k < 4; ++k) {
-      const std::ptrdiff_t t = unknown(link.tet_body, link.tet_vertices[k]);
-      if (t >= 0) g -= link.weights[k] * v.segment<3>(t);
-    }
+    if (u.point >= 0) g += v.segment<3>(u.point);
+    for (int k = 0; k < 4; ++k)
+      if (u.tet[k] >= 0) g -= link.weights[k] * v.segment<3>(u.tet[k]);
     return g;
   }
 
@@ -123,14 +132,13 @@ class Component {
     return g;
   }
 
-  // out += J^T f over the unknowns.
-  void add_transposed(const ContactLink& link, const Vec3& f, Eigen::VectorXd& out) const {
-    const std::ptrdiff_t p = unknown(link.point_body, link.vertex);
-    if (p >= 0) out.segment<3>(p) += f;
-    for (int k = 0; k < 4; ++k) {
-      const std::ptrdiff_t t = unknown(link.tet_body, link.tet_vertices[k]);
-      if (t >= 0) out.segment<3>(t) -= link.weights[k] * f;
-    }
+  // out += J^T f over the unknowns, for link l.
+  void add_transposed(std::size_t l, const Vec3& f, Eigen::VectorXd& out) const {
+    const ContactLink& link = *m_links[l];
+    const LinkUnknowns& u = m_unknowns[l];
+    if (u.point >= 0) out.segment<3>(u.point) += f;
+    for (int k = 0; k < 4; ++k)
+      if (u.tet[k] >= 0) out.segment<3>(u.tet[k]) -= link.weights[k] * f;
   }
 
   double coupling(const ContactLink& link) const {
@@ -146,8 +154,8 @@ class Component {
     for (std::size_t l = 0; l < m_links.size(); ++l) {
       if (!m_active[l]) continue;
       const ContactLink& link = *m_links[l];
-      const double s = link.normal.dot(unknown_part(link, v));
-      add_transposed(link, coupling(link) * s * link.normal, out);
+      const double s = link.normal.dot(unknown_part(l, v));
+      add_transposed(l, coupling(link) * s * link.normal, out);
     }
   }
 
@@ -160,14 +168,12 @@ class Component {
       const ContactLink& link = *m_links[l];
       const double a = coupling(link);
       const Vec3 u = known_part(link);
-      add_transposed(link, (m_dt * link.stiffness_n_per_m * link.depth_m - a * link.normal.dot(u)) * link.normal, rhs);
+      add_transposed(l, (m_dt * link.stiffness_n_per_m * link.depth_m - a * link.normal.dot(u)) * link.normal, rhs);
       const Vec3 nn = link.normal.cwiseProduct(link.normal);
-      const std::ptrdiff_t p = unknown(link.point_body, link.vertex);
-      if (p >= 0) diagonal.segment<3>(p) += a * nn;
-      for (int k = 0; k < 4; ++k) {
-        const std::ptrdiff_t t = unknown(link.tet_body, link.tet_vertices[k]);
-        if (t >= 0) diagonal.segment<3>(t) += a * link.weights[k] * link.weights[k] * nn;
-      }
+      const LinkUnknowns& unknowns = m_unknowns[l];
+      if (unknowns.point >= 0) diagonal.segment<3>(unknowns.point) += a * nn;
+      for (int k = 0; k < 4; ++k)
+        if (unknowns.tet[k] >= 0) diagonal.segment<3>(unknowns.tet[k]) += a * link.weights[k] * link.weights[k] * nn;
     }
   }
 
@@ -204,7 +210,7 @@ class Component {
     for (std::size_t l = 0; l < m_links.size(); ++l) {
       if (!m_active[l]) continue;
       const ContactLink& link = *m_links[l];
-      const double s = link.normal.dot(unknown_part(link, v) + known_part(link));
+      const double s = link.normal.dot(unknown_part(l, v) + known_part(link));
       lambda[l] = link_lambda(link, s, m_dt);
     }
     return lambda;
@@ -213,6 +219,12 @@ class Component {
   World& m_world;
   std::vector<std::int32_t> m_bodies;
   std::vector<const ContactLink*> m_links;
+  // A link's unknowns (unknown()): its point's, its tet's four vertices'.
+  struct LinkUnknowns {
+    std::ptrdiff_t point;
+    std::array<std::ptrdiff_t, 4> tet;
+  };
+  std::vector<LinkUnknowns> m_unknowns;
   double m_dt;
   std::vector<std::ptrdiff_t> m_offset;  // per body: first unknown, -1 when not in the component
   std::size_t m_size = 0;
