@@ -42,7 +42,7 @@ void multiply_block_rows(const BlockRows& blocks, const std::int32_t* outer, con
       for (std::size_t row = 3 * i; row < 3 * i + 3; ++row) {
         double sum = 0.0;
         for (std::int32_t k = outer[row]; k < outer[row + 1]; ++k) sum += values[k] * x[inner[k]];
-        out[row] = sum;
+        out[row] = 0.0 + sum;  // Eigen adds the sum to a zeroed result (header)
       }
       continue;
     }
@@ -67,9 +67,9 @@ void multiply_block_rows(const BlockRows& blocks, const std::int32_t* outer, con
       s2 += v2[1] * x1;
       s2 += v2[2] * x2;
     }
-    out[3 * i] = s0;
-    out[3 * i + 1] = s1;
-    out[3 * i + 2] = s2;
+    out[3 * i] = 0.0 + s0;
+    out[3 * i + 1] = 0.0 + s1;
+    out[3 * i + 2] = 0.0 + s2;
   }
 }
 

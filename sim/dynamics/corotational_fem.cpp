@@ -4,14 +4,22 @@
 #include <Eigen/LU>
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 
 #include "sim/dynamics/rotation_extraction.hpp"
 
 // step()'s own solve is Eigen's ConjugateGradient with its matrix read by
 // blocks: Eigen's matrix-free interface (a matrix type whose product Eigen
-// asks us for) around the assembled system. Every other operation of the
-// solve is Eigen's, on the same values, so its iterates are what the
-// compressed matrix gives, bit for bit (tests/sim/dynamics/block_rows_test).
+// asks us for) around the assembled system, and Eigen's Jacobi
+// preconditioner on the compressed matrix itself. The rest of the solve is
+// Eigen's vector arithmetic on the same values. Its two products take
+// different paths than for a SparseMatrix but give the same bits:
+// `tmp = mat * p` zeroes tmp and adds 1 * (A p) in both; `r = b - mat * x`
+// is r = b, r += -1 * (A x) for a SparseMatrix, and a temporary 0 + 1 * (A x)
+// subtracted from b here, the same numbers since b - y == b + (-y) exactly
+// and A x is never -0.0 (block_rows.hpp). Only a NaN's sign bit could differ.
+// tests/sim/dynamics/block_rows_test.cpp compares 20 steps bit for bit.
 namespace tcb {
 namespace {
 class BlockSystem;
@@ -42,8 +50,8 @@ class BlockSystem : public Eigen::EigenBase<BlockSystem> {
     return Eigen::Product<BlockSystem, Rhs, Eigen::AliasFreeProduct>(*this, x.derived());
   }
 
-  // dst += alpha * A x, with A x's entries what Eigen's row loop sums, and
-  // the same final `dst(i) += alpha * sum` (SparseDenseProduct.h).
+  // dst += alpha * A x, A x's entries as Eigen's row loop sums them, with
+  // its final `dst(i) += alpha * sum` (SparseDenseProduct.h; file comment).
   template <typename Dest>
   void scale_and_add(Dest& dst, Eigen::Ref<const Eigen::VectorXd> x, double alpha) const {
     multiply_block_rows(*m_blocks, m_system->outerIndexPtr(), m_system->innerIndexPtr(), m_system->valuePtr(),
@@ -232,6 +240,13 @@ bool CorotationalFem::begin_linear_step(std::span<const Vec3> x, std::span<const
 }
 
 void CorotationalFem::multiply(Eigen::Ref<const Eigen::VectorXd> v, Eigen::Ref<Eigen::VectorXd> out) const {
+  // A Ref cannot be resized: a wrong size would write past the caller's vector.
+  if (v.size() != m_system.cols() || out.size() != m_system.rows())
+    throw std::invalid_argument("CorotationalFem::multiply: vectors of " + std::to_string(v.size()) + " and " +
+                                std::to_string(out.size()) + " entries for a system of " +
+                                std::to_string(m_system.rows()));
+  if (v.data() < out.data() + out.size() && out.data() < v.data() + v.size())
+    throw std::invalid_argument("CorotationalFem::multiply: v and out overlap");
   // What `out.noalias() = m_system * v` gives, bit for bit, read by blocks.
   multiply_block_rows(m_blocks, m_system.outerIndexPtr(), m_system.innerIndexPtr(), m_system.valuePtr(), v.data(),
                       out.data());

@@ -122,13 +122,14 @@ class Component {
     return g;
   }
 
-  // The part of the relative velocity that is known over this step.
-  Vec3 known_part(const ContactLink& link) const {
+  // The part of link l's relative velocity that is known over this step.
+  Vec3 known_part(std::size_t l) const {
+    const ContactLink& link = *m_links[l];
+    const LinkUnknowns& u = m_unknowns[l];
     Vec3 g = Vec3::Zero();
-    if (unknown(link.point_body, link.vertex) < 0) g += known_velocity(link.point_body, link.vertex);
+    if (u.point < 0) g += known_velocity(link.point_body, link.vertex);
     for (int k = 0; k < 4; ++k)
-      if (unknown(link.tet_body, link.tet_vertices[k]) < 0)
-        g -= link.weights[k] * known_velocity(link.tet_body, link.tet_vertices[k]);
+      if (u.tet[k] < 0) g -= link.weights[k] * known_velocity(link.tet_body, link.tet_vertices[k]);
     return g;
   }
 
@@ -145,7 +146,7 @@ class Component {
     return m_dt * (m_dt * link.stiffness_n_per_m + link.damping_n_s_per_m);
   }
 
-  void multiply(const Eigen::VectorXd& v, Eigen::VectorXd& out) {
+  void multiply(const Eigen::VectorXd& v, Eigen::VectorXd& out) const {
     out.resize(v.size());
     for (const std::int32_t b : m_bodies) {
       const auto n = static_cast<Eigen::Index>(3 * m_world.bodies[b].x_m.size());
@@ -167,7 +168,7 @@ class Component {
       if (!m_active[l]) continue;
       const ContactLink& link = *m_links[l];
       const double a = coupling(link);
-      const Vec3 u = known_part(link);
+      const Vec3 u = known_part(l);
       add_transposed(l, (m_dt * link.stiffness_n_per_m * link.depth_m - a * link.normal.dot(u)) * link.normal, rhs);
       const Vec3 nn = link.normal.cwiseProduct(link.normal);
       const LinkUnknowns& unknowns = m_unknowns[l];
@@ -210,7 +211,7 @@ class Component {
     for (std::size_t l = 0; l < m_links.size(); ++l) {
       if (!m_active[l]) continue;
       const ContactLink& link = *m_links[l];
-      const double s = link.normal.dot(unknown_part(l, v) + known_part(link));
+      const double s = link.normal.dot(unknown_part(l, v) + known_part(l));
       lambda[l] = link_lambda(link, s, m_dt);
     }
     return lambda;

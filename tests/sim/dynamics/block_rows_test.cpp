@@ -93,19 +93,21 @@ TEST_CASE("block rows: the same bits as Eigen's product on an FEM pattern", "[dy
 }
 
 TEST_CASE("block rows: the order of the sums is Eigen's, not just the value", "[dynamics][block_rows]") {
-  // One row triple, one block, x = (1, 1e16, -1e16): summed left to right,
-  // 1 + 1e16 rounds the 1 away and each row gives 0; summing the two large
-  // terms first would give 1.
-  SparseMatrix m(3, 3);
+  // One row triple of two blocks, all ones, x = (1e16, 0, 0, -1e16, 1, 0).
+  // Term by term, as Eigen sums, each row gives 1; a block's three terms
+  // summed before joining the row (-1e16 + 1 rounds to -1e16) give 0, and so
+  // would summing the blocks from the last.
+  SparseMatrix m(6, 6);
   std::vector<Eigen::Triplet<double>> entries;
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) entries.emplace_back(r, c, 1.0);
+  for (int r = 0; r < 6; ++r)
+    for (int c = 0; c < 6; ++c) entries.emplace_back(r, c, 1.0);
   m.setFromTriplets(entries.begin(), entries.end());
   m.makeCompressed();
-  const Eigen::VectorXd x = Eigen::Vector3d(1.0, 1e16, -1e16);
-  Eigen::VectorXd expected(3);
+  Eigen::VectorXd x(6);
+  x << 1e16, 0.0, 0.0, -1e16, 1.0, 0.0;
+  Eigen::VectorXd expected(6);
   expected.noalias() = m * x;
-  REQUIRE(expected[0] == 0.0);
+  REQUIRE(expected[0] == 1.0);
   CHECK(same_bits(block_product(blocks_of(m), m, x), expected));
 }
 
@@ -153,6 +155,11 @@ TEST_CASE("block rows: CorotationalFem::multiply() is its system's Eigen product
     fem.multiply(p, got);
     CHECK(same_bits(got, expected));
   }
+  // An Eigen::Ref cannot grow: a wrong size or an overlap is refused, not
+  // written past.
+  Eigen::VectorXd q = random_vector(fem.system().cols(), 9), short_out(3);
+  CHECK_THROWS_AS(fem.multiply(q, short_out), std::invalid_argument);
+  CHECK_THROWS_AS(fem.multiply(q, q), std::invalid_argument);
 }
 
 TEST_CASE("block rows: CorotationalFem::step() is Eigen's conjugate gradients on the compressed system, bit for bit",
@@ -160,7 +167,13 @@ TEST_CASE("block rows: CorotationalFem::step() is Eigen's conjugate gradients on
   // The reference is step() as it was before the product was read by blocks:
   // assemble, then Eigen's ConjugateGradient (Jacobi, Lower | Upper) on the
   // compressed matrix, warm-started from v.
-  const TetMesh mesh = make_box_mesh(Vec3(0.3, 0.2, 0.25), 4, 3, 3);
+  // A box and one vertex in no tet: massless, so pinned, and its rows hold
+  // only their diagonal (a row triple that is not whole blocks).
+  const TetMesh box = make_box_mesh(Vec3(0.3, 0.2, 0.25), 4, 3, 3);
+  std::vector<Vec3> positions = box.positions_m;
+  positions.push_back(Vec3(0.5, 0.5, 0.5));
+  const TetMesh mesh = build_tet_mesh(positions, box.tets);
+  REQUIRE(mesh.isolated_vertices == 1);
   const Material material = soft_material();
   CorotationalFem fem(mesh, mesh.positions_m, material), reference(mesh, mesh.positions_m, material);
   std::vector<Vec3> x = mesh.positions_m, v(mesh.vertex_count(), Vec3::Zero()), f(mesh.vertex_count());
