@@ -4,7 +4,7 @@
 // Objects: a structured box of 10,368 tets and the real dog.mesh (34,072).
 // BM_SystemProductPaired/<object> times the CG's matrix-vector product on the
 // same assembled system two ways, alternated within one loop: Eigen's
-// compressed-row product (what the coupled solve used before) and
+// compressed-row product (what both implicit solves used before) and
 // CorotationalFem::multiply() (block_rows.hpp); both answers are compared
 // bit for bit after every pair.
 #include <benchmark/benchmark.h>

@@ -39,11 +39,10 @@ class BlockSystem : public Eigen::EigenBase<BlockSystem> {
   using StorageIndex = int;
   enum { ColsAtCompileTime = Eigen::Dynamic, MaxColsAtCompileTime = Eigen::Dynamic, IsRowMajor = true };
 
-  BlockSystem(const CorotationalFem::SparseMatrix& system, const BlockRows& blocks)
-      : m_system(&system), m_blocks(&blocks), m_product(system.rows()) {}
-  Eigen::Index rows() const { return m_system->rows(); }
-  Eigen::Index cols() const { return m_system->cols(); }
-  const CorotationalFem::SparseMatrix& sparse() const { return *m_system; }
+  explicit BlockSystem(const CorotationalFem& fem) : m_fem(&fem), m_product(fem.system().rows()) {}
+  Eigen::Index rows() const { return m_fem->system().rows(); }
+  Eigen::Index cols() const { return m_fem->system().cols(); }
+  const CorotationalFem::SparseMatrix& sparse() const { return m_fem->system(); }
 
   template <typename Rhs>
   Eigen::Product<BlockSystem, Rhs, Eigen::AliasFreeProduct> operator*(const Eigen::MatrixBase<Rhs>& x) const {
@@ -54,14 +53,12 @@ class BlockSystem : public Eigen::EigenBase<BlockSystem> {
   // its final `dst(i) += alpha * sum` (SparseDenseProduct.h; file comment).
   template <typename Dest>
   void scale_and_add(Dest& dst, Eigen::Ref<const Eigen::VectorXd> x, double alpha) const {
-    multiply_block_rows(*m_blocks, m_system->outerIndexPtr(), m_system->innerIndexPtr(), m_system->valuePtr(),
-                        x.data(), m_product.data());
+    m_fem->multiply(x, m_product);
     for (Eigen::Index i = 0; i < dst.size(); ++i) dst.coeffRef(i) += alpha * m_product[i];
   }
 
  private:
-  const CorotationalFem::SparseMatrix* m_system;
-  const BlockRows* m_blocks;
+  const CorotationalFem* m_fem;
   mutable Eigen::VectorXd m_product;  // scratch: one solve, one thread
 };
 
@@ -256,7 +253,7 @@ Eigen::VectorXd CorotationalFem::diagonal() const { return m_system.diagonal(); 
 
 void CorotationalFem::step(std::span<Vec3> x, std::span<Vec3> v, std::span<const Vec3> f_ext, double dt) {
   begin_linear_step(x, v, f_ext, dt);
-  const BlockSystem system(m_system, m_blocks);
+  const BlockSystem system(*this);
   Eigen::ConjugateGradient<BlockSystem, Eigen::Lower | Eigen::Upper, SystemDiagonal> cg;
   cg.setTolerance(m_material.cg_tolerance);
   cg.setMaxIterations(m_material.cg_max_iterations);

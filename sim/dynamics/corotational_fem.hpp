@@ -63,7 +63,7 @@ class CorotationalFem final : public ElasticModel {
   std::vector<Element> m_elements;
   std::vector<double> m_mass_kg;
   SparseMatrix m_system;
-  BlockRows m_blocks;  // m_system's pattern by 3x3 blocks, for multiply()
+  BlockRows m_blocks;  // m_system's pattern by 3x3 blocks, for multiply() (both solves)
   // For each element, the value offsets of its 16 3x3 blocks: entry
   // (i*4 + j)*3 + r is where row 3*v_i + r, column 3*v_j starts.
   std::vector<std::array<int, 48>> m_block_slots;

@@ -18,21 +18,28 @@ using namespace tcb;
 
 namespace {
 
-using SparseMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor, int>;
+using SparseMatrix = CorotationalFem::SparseMatrix;
 
-// CorotationalFem::build_pattern()'s pattern for these tets over n vertices,
-// with random values spread over many binades (and some exact zeros).
-SparseMatrix fem_pattern(const std::vector<Tet>& tets, std::size_t n, unsigned seed) {
-  std::vector<Eigen::Triplet<double>> entries;
-  for (const Tet& t : tets)
-    for (int a = 0; a < 4; ++a)
-      for (int b = 0; b < 4; ++b)
-        for (int r = 0; r < 3; ++r)
-          for (int c = 0; c < 3; ++c) entries.emplace_back(3 * t[a] + r, 3 * t[b] + c, 0.0);
-  for (std::size_t i = 0; i < 3 * n; ++i) entries.emplace_back(i, i, 0.0);
-  SparseMatrix m(static_cast<Eigen::Index>(3 * n), static_cast<Eigen::Index>(3 * n));
-  m.setFromTriplets(entries.begin(), entries.end());
-  m.makeCompressed();
+Material soft_material() {
+  Material material;
+  material.youngs_modulus_pa = 1e5;
+  material.damping_mass_per_s = 0.5;
+  return material;
+}
+
+// A box mesh and one vertex in no tet: massless, so pinned, and its rows
+// hold only their diagonal (a row triple that is not whole blocks).
+TetMesh box_and_isolated_vertex(int nx, int ny, int nz) {
+  const TetMesh box = make_box_mesh(Vec3(0.3, 0.2, 0.25), nx, ny, nz);
+  std::vector<Vec3> positions = box.positions_m;
+  positions.push_back(Vec3(0.5, 0.5, 0.5));
+  return build_tet_mesh(positions, box.tets);
+}
+
+// CorotationalFem's own pattern for this mesh, with random values spread
+// over many binades (and some exact zeros).
+SparseMatrix fem_pattern(const TetMesh& mesh, unsigned seed) {
+  SparseMatrix m = CorotationalFem(mesh, mesh.positions_m, soft_material()).system();
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> mantissa(-1.0, 1.0);
   std::uniform_int_distribution<int> exponent(-30, 30), zero(0, 19);
@@ -61,13 +68,6 @@ Eigen::VectorXd block_product(const BlockRows& blocks, const SparseMatrix& m, co
   return out;
 }
 
-Material soft_material() {
-  Material material;
-  material.youngs_modulus_pa = 1e5;
-  material.damping_mass_per_s = 0.5;
-  return material;
-}
-
 BlockRows blocks_of(const SparseMatrix& m) {
   return block_rows_of({m.outerIndexPtr(), static_cast<std::size_t>(m.rows()) + 1},
                        {m.innerIndexPtr(), static_cast<std::size_t>(m.nonZeros())});
@@ -76,11 +76,11 @@ BlockRows blocks_of(const SparseMatrix& m) {
 }  // namespace
 
 TEST_CASE("block rows: the same bits as Eigen's product on an FEM pattern", "[dynamics][block_rows]") {
-  const TetMesh mesh = make_box_mesh(Vec3(0.3, 0.2, 0.25), 5, 4, 3);
-  // One vertex more than the mesh uses: its rows hold only their diagonal.
-  const std::size_t n = mesh.vertex_count() + 1;
+  const TetMesh mesh = box_and_isolated_vertex(5, 4, 3);
+  REQUIRE(mesh.isolated_vertices == 1);
+  const std::size_t n = mesh.vertex_count();
   for (unsigned seed = 1; seed <= 20; ++seed) {
-    const SparseMatrix m = fem_pattern(mesh.tets, n, seed);
+    const SparseMatrix m = fem_pattern(mesh, seed);
     const BlockRows blocks = blocks_of(m);
     REQUIRE(blocks.regular.size() == n);
     for (std::size_t i = 0; i + 1 < n; ++i) REQUIRE(blocks.regular[i] == 1);
@@ -167,12 +167,7 @@ TEST_CASE("block rows: CorotationalFem::step() is Eigen's conjugate gradients on
   // The reference is step() as it was before the product was read by blocks:
   // assemble, then Eigen's ConjugateGradient (Jacobi, Lower | Upper) on the
   // compressed matrix, warm-started from v.
-  // A box and one vertex in no tet: massless, so pinned, and its rows hold
-  // only their diagonal (a row triple that is not whole blocks).
-  const TetMesh box = make_box_mesh(Vec3(0.3, 0.2, 0.25), 4, 3, 3);
-  std::vector<Vec3> positions = box.positions_m;
-  positions.push_back(Vec3(0.5, 0.5, 0.5));
-  const TetMesh mesh = build_tet_mesh(positions, box.tets);
+  const TetMesh mesh = box_and_isolated_vertex(4, 3, 3);
   REQUIRE(mesh.isolated_vertices == 1);
   const Material material = soft_material();
   CorotationalFem fem(mesh, mesh.positions_m, material), reference(mesh, mesh.positions_m, material);
