@@ -1,7 +1,7 @@
 #pragma once
 // The contract of oracle/self_depth.hpp written out directly, for tests:
 // exact orient3d per tet, CGAL point-triangle distance per triangle, no
-// boxes, no trees. O(V T^2) in the worst case: small meshes only.
+// boxes, no trees. O(V T) set lookups: small meshes only.
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <algorithm>
@@ -20,16 +20,20 @@ namespace tcb::test {
 inline std::vector<double> brute_force_depths(const Body& body, const std::vector<TetSide>& self_sides) {
   const TetMesh& mesh = *body.mesh;
   std::vector<double> depth(body.x_m.size(), std::nan(""));
+  // The parts of the tets at each vertex.
+  std::vector<std::set<std::int32_t>> parts_at(mesh.vertex_count());
+  for (std::size_t t = 0; t < mesh.tet_count(); ++t)
+    for (const std::int32_t u : mesh.tets[t]) parts_at[static_cast<std::size_t>(u)].insert(mesh.tet_part[t]);
   for (std::size_t v = 0; v < body.x_m.size(); ++v) {
     if (self_sides[v] != TetSide::Inside) continue;
-    std::set<std::int32_t> own, hood;
-    for (std::size_t t = 0; t < mesh.tet_count(); ++t)
-      if (std::count(mesh.tets[t].begin(), mesh.tets[t].end(), static_cast<std::int32_t>(v))) own.insert(mesh.tet_part[t]);
+    // v's own parts, and its neighbourhood: the parts of every tet with a
+    // vertex that a tet of an own part holds.
+    const std::set<std::int32_t>& own = parts_at[v];
+    std::set<std::int32_t> hood;
     for (std::size_t t = 0; t < mesh.tet_count(); ++t)
       for (const std::int32_t u : mesh.tets[t])
-        for (std::size_t s = 0; s < mesh.tet_count(); ++s)
-          if (own.count(mesh.tet_part[s]) && std::count(mesh.tets[s].begin(), mesh.tets[s].end(), u))
-            hood.insert(mesh.tet_part[t]);
+        for (const std::int32_t part : parts_at[static_cast<std::size_t>(u)])
+          if (own.count(part)) hood.insert(mesh.tet_part[t]);
     // Strictly inside a far tet, or in a closed far tet and on no boundary
     // triangle of the body (the tet_inside rule over the far tets).
     bool strictly = false, touches = false, on_surface = false;
