@@ -4,6 +4,7 @@
 #include <Eigen/LU>
 
 #include <algorithm>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 
@@ -160,16 +161,33 @@ Eigen::Matrix3d CorotationalFem::deformation_gradient(const Element& e, std::spa
   return ds * e.rest_edges_inverse;
 }
 
-Eigen::Matrix3d CorotationalFem::rotation_of(const Element& e, const Eigen::Matrix3d& f) {
-  Eigen::Quaterniond q = e.rotation;
-  extract_rotation(f, q);
-  return q.toRotationMatrix();
+bool CorotationalFem::rotations_kept_for(std::span<const Vec3> x) const {
+  // The same bits, not ==: the kept rotations are certain to be the ones the
+  // step would extract only from the very same bits (+0.0 == -0.0, NaN != NaN).
+  return m_rotations_kept && x.size() == m_kept_x_m.size() &&
+         (x.empty() || std::memcmp(x.data(), m_kept_x_m.data(), x.size() * sizeof(Vec3)) == 0);
+}
+
+const std::vector<Eigen::Quaterniond>& CorotationalFem::rotations_at(std::span<const Vec3> x) const {
+  if (rotations_kept_for(x)) return m_kept_rotations;
+  m_rotations_kept = false;  // stays false if an exception leaves the copy half made
+  m_kept_rotations.resize(m_elements.size());
+  for (std::size_t ei = 0; ei < m_elements.size(); ++ei) {
+    const Element& e = m_elements[ei];
+    m_kept_rotations[ei] = e.rotation;
+    extract_rotation(deformation_gradient(e, x), m_kept_rotations[ei]);
+  }
+  m_kept_x_m.assign(x.begin(), x.end());
+  m_rotations_kept = true;
+  return m_kept_rotations;
 }
 
 void CorotationalFem::elastic_forces(std::span<const Vec3> x, std::span<Vec3> f) const {
   std::fill(f.begin(), f.end(), Vec3::Zero());
-  for (const Element& e : m_elements) {
-    const Eigen::Matrix3d r = rotation_of(e, deformation_gradient(e, x));
+  const std::vector<Eigen::Quaterniond>& rotations = rotations_at(x);
+  for (std::size_t ei = 0; ei < m_elements.size(); ++ei) {
+    const Element& e = m_elements[ei];
+    const Eigen::Matrix3d r = rotations[ei].toRotationMatrix();
     Eigen::Matrix<double, 12, 1> u;
     for (int k = 0; k < 4; ++k) u.segment<3>(3 * k) = r.transpose() * x[e.v[k]] - e.rest_m[k];
     const Eigen::Matrix<double, 12, 1> local = e.stiffness * u;
@@ -179,8 +197,10 @@ void CorotationalFem::elastic_forces(std::span<const Vec3> x, std::span<Vec3> f)
 
 double CorotationalFem::elastic_energy_j(std::span<const Vec3> x) const {
   double energy = 0.0;
-  for (const Element& e : m_elements) {
-    const Eigen::Matrix3d r = rotation_of(e, deformation_gradient(e, x));
+  const std::vector<Eigen::Quaterniond>& rotations = rotations_at(x);
+  for (std::size_t ei = 0; ei < m_elements.size(); ++ei) {
+    const Element& e = m_elements[ei];
+    const Eigen::Matrix3d r = rotations[ei].toRotationMatrix();
     Eigen::Matrix<double, 12, 1> u;
     for (int k = 0; k < 4; ++k) u.segment<3>(3 * k) = r.transpose() * x[e.v[k]] - e.rest_m[k];
     energy += 0.5 * u.dot(e.stiffness * u);
@@ -198,9 +218,16 @@ bool CorotationalFem::begin_linear_step(std::span<const Vec3> x, std::span<const
 
   // rhs = M v + dt (f_el(x) + f_ext); f_el accumulated per element below.
   for (std::size_t i = 0; i < n; ++i) m_rhs.segment<3>(3 * i) = dt * f_ext[i];
+  // The energy measured after the last step extracted these rotations already.
+  const bool kept = rotations_kept_for(x);
+  m_rotations_kept = false;  // the warm starts move on below
+  m_kept_rotations_taken += kept;
   for (std::size_t ei = 0; ei < m_elements.size(); ++ei) {
     Element& e = m_elements[ei];
-    extract_rotation(deformation_gradient(e, x), e.rotation);
+    if (kept)
+      e.rotation = m_kept_rotations[ei];
+    else
+      extract_rotation(deformation_gradient(e, x), e.rotation);
     const Eigen::Matrix3d r = e.rotation.toRotationMatrix();
     Eigen::Matrix<double, 12, 1> u;
     for (int k = 0; k < 4; ++k) u.segment<3>(3 * k) = r.transpose() * x[e.v[k]] - e.rest_m[k];

@@ -15,8 +15,19 @@
 /// Cost per step: O(T) assembly + CG iterations over a matrix with ~45 nonzeros
 /// per row. multiply() reads that matrix by 3x3 blocks (block_rows.hpp), with
 /// Eigen's product's result bit for bit.
+/// The rotations that elastic_energy_j() and elastic_forces() extract at x are
+/// kept, with a copy of x (32 bytes an element, 24 a vertex), and the next
+/// begin_linear_step() takes them instead of extracting again when it gets x
+/// bit for bit: a run measures the energy at the positions its next step
+/// starts from. Extraction is a function of F(x) and the warm start alone, and
+/// both compute F(x) with the same function, so the step's numbers are the
+/// same either way (in the project's builds, which fuse no multiply-adds: a
+/// build that does must fuse both call sites alike). The kept rotations make
+/// those const calls unsafe to make concurrently on one model; nothing does.
 
 #include <Eigen/Geometry>
+
+#include <cstdint>
 #include <Eigen/SparseCore>
 
 #include "sim/dynamics/block_rows.hpp"
@@ -43,6 +54,9 @@ class CorotationalFem final : public ElasticModel {
   /// solve uses, and what multiply() reads by blocks (tests and benchmarks
   /// compare the two products).
   const SparseMatrix& system() const { return m_system; }
+  /// Steps that took kept rotations instead of extracting (tests check the
+  /// saving happens where it should, and only there).
+  std::int64_t kept_rotations_taken() const { return m_kept_rotations_taken; }
   double solver_tolerance() const override { return m_material.cg_tolerance; }
   int solver_max_iterations() const override { return m_material.cg_max_iterations; }
 
@@ -56,7 +70,10 @@ class CorotationalFem final : public ElasticModel {
   };
 
   Eigen::Matrix3d deformation_gradient(const Element& e, std::span<const Vec3> x) const;
-  static Eigen::Matrix3d rotation_of(const Element& e, const Eigen::Matrix3d& f);
+  /// Each element's rotation at x, extracted from its warm start (which stays
+  /// as it is), or the ones kept from the last call at the same x.
+  const std::vector<Eigen::Quaterniond>& rotations_at(std::span<const Vec3> x) const;
+  bool rotations_kept_for(std::span<const Vec3> x) const;
   void build_pattern(std::size_t vertex_count);
 
   Material m_material;
@@ -69,6 +86,13 @@ class CorotationalFem final : public ElasticModel {
   std::vector<std::array<int, 48>> m_block_slots;
   std::vector<std::array<int, 3>> m_diagonal_slots;
   Eigen::VectorXd m_rhs, m_velocity;
+  // What rotations_at() last extracted, from the warm starts as they are now,
+  // and at which positions; begin_linear_step() moves the warm starts on and
+  // drops them.
+  mutable std::vector<Eigen::Quaterniond> m_kept_rotations;
+  mutable std::vector<Vec3> m_kept_x_m;
+  mutable bool m_rotations_kept = false;
+  std::int64_t m_kept_rotations_taken = 0;
 };
 
 }  // namespace tcb

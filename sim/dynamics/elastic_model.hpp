@@ -24,7 +24,9 @@ class ElasticModel {
   /// Advances x and v by dt under the elastic forces and f_ext (per vertex).
   virtual void step(std::span<Vec3> x_m, std::span<Vec3> v_m_per_s, std::span<const Vec3> f_ext_n,
                     double dt_s) = 0;
-  /// Elastic potential energy at x.
+  /// Elastic potential energy at x. A model may keep what it computes here for
+  /// the next step (CorotationalFem keeps its rotations), so this and
+  /// elastic_forces() must not run concurrently on one model.
   virtual double elastic_energy_j(std::span<const Vec3> x_m) const = 0;
   /// Elastic forces at x (written, not added).
   virtual void elastic_forces(std::span<const Vec3> x_m, std::span<Vec3> f_n) const = 0;

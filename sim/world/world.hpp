@@ -97,10 +97,11 @@ class World {
   void step(double dt_s);
 
   double kinetic_energy_j() const;          ///< of the dynamic bodies
-  double elastic_energy_j() const;          ///< of the dynamic bodies
+  double elastic_energy_j() const;          ///< of the dynamic bodies; not concurrently (elastic_model.hpp)
   double gravity_potential_j() const;       ///< -m g . x over dynamic bodies
   /// kinetic + elastic + gravitational energy of the dynamic bodies (the
-  /// elastic part costs a rotation extraction per tet).
+  /// elastic part costs a rotation extraction per tet, which a corotational
+  /// body's next step skips if it starts from these positions).
   double total_energy_j() const { return kinetic_energy_j() + elastic_energy_j() + gravity_potential_j(); }
   /// Largest vertex speed of the dynamic bodies; NaN if any state is not finite.
   double max_speed_m_per_s() const;

@@ -8,8 +8,10 @@
 #include "sim/dynamics/corotational_fem.hpp"
 #include "sim/dynamics/mass_spring.hpp"
 #include "sim/mesh/box_mesh.hpp"
+#include "tests/sim/dynamics/positions.hpp"
 
 using namespace tcb;
+using test::perturbed;
 
 namespace {
 
@@ -22,14 +24,6 @@ Material material_for(MaterialModel model, Integrator integrator) {
   m.density_kg_per_m3 = 1000.0;
   m.cg_tolerance = 1e-10;
   return m;
-}
-
-std::vector<Vec3> perturbed(const std::vector<Vec3>& x, double amount, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-amount, amount);
-  std::vector<Vec3> y = x;
-  for (Vec3& p : y) p += Vec3(u(rng), u(rng), u(rng));
-  return y;
 }
 
 }  // namespace
