@@ -26,9 +26,9 @@
 /// those const calls unsafe to make concurrently on one model; nothing does.
 
 #include <Eigen/Geometry>
+#include <Eigen/SparseCore>
 
 #include <cstdint>
-#include <Eigen/SparseCore>
 
 #include "sim/dynamics/block_rows.hpp"
 #include "sim/dynamics/elastic_model.hpp"
