@@ -13,19 +13,14 @@
 #include "sim/dynamics/block_rows.hpp"
 #include "sim/dynamics/corotational_fem.hpp"
 #include "sim/mesh/box_mesh.hpp"
+#include "tests/sim/dynamics/fixtures.hpp"
 
 using namespace tcb;
+using test::soft_material;
 
 namespace {
 
 using SparseMatrix = CorotationalFem::SparseMatrix;
-
-Material soft_material() {
-  Material material;
-  material.youngs_modulus_pa = 1e5;
-  material.damping_mass_per_s = 0.5;
-  return material;
-}
 
 // A box mesh and one vertex in no tet: massless, so pinned, and its rows
 // hold only their diagonal (a row triple that is not whole blocks).
@@ -193,8 +188,8 @@ TEST_CASE("block rows: CorotationalFem::step() is Eigen's conjugate gradients on
     reference.end_linear_step(rx, rv, solved, 1e-3, static_cast<int>(cg.iterations()), cg.info() == Eigen::Success);
     REQUIRE(fem.last_solver_iterations() == reference.last_solver_iterations());
     total_iterations += fem.last_solver_iterations();
-    REQUIRE(std::memcmp(x.data(), rx.data(), x.size() * sizeof(Vec3)) == 0);
-    REQUIRE(std::memcmp(v.data(), rv.data(), v.size() * sizeof(Vec3)) == 0);
+    REQUIRE(test::same_bits(x, rx));
+    REQUIRE(test::same_bits(v, rv));
   }
   CHECK(total_iterations > 20);  // the solves did iterate
 }

@@ -7,20 +7,14 @@
 
 #include "sim/dynamics/corotational_fem.hpp"
 #include "sim/mesh/box_mesh.hpp"
-#include "tests/sim/dynamics/positions.hpp"
+#include "tests/sim/dynamics/fixtures.hpp"
 
 using namespace tcb;
 using test::perturbed;
 using test::same_bits;
+using test::soft_material;
 
 namespace {
-
-Material soft_material() {
-  Material material;
-  material.youngs_modulus_pa = 1e5;
-  material.damping_mass_per_s = 0.5;
-  return material;
-}
 
 // A bent, swinging box: gravity, and a pull along x on its upper part.
 struct Swing {

@@ -8,7 +8,7 @@
 #include "sim/dynamics/corotational_fem.hpp"
 #include "sim/dynamics/mass_spring.hpp"
 #include "sim/mesh/box_mesh.hpp"
-#include "tests/sim/dynamics/positions.hpp"
+#include "tests/sim/dynamics/fixtures.hpp"
 
 using namespace tcb;
 using test::perturbed;

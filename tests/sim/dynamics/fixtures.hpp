@@ -1,13 +1,23 @@
 #pragma once
-// Positions for the dynamics tests: randomly moved copies, and a comparison
-// bit for bit (+0.0 and -0.0 differ, a NaN equals its own bits).
+// Shared by the dynamics tests: a soft material, randomly moved copies of
+// positions, and a comparison of positions bit for bit (+0.0 and -0.0
+// differ, a NaN equals its own bits).
 #include <cstring>
 #include <random>
 #include <vector>
 
+#include "sim/dynamics/material.hpp"
 #include "sim/mesh/tet_mesh.hpp"
 
 namespace tcb::test {
+
+// Soft enough to bend visibly within a few millisecond steps, and damped.
+inline Material soft_material() {
+  Material material;
+  material.youngs_modulus_pa = 1e5;
+  material.damping_mass_per_s = 0.5;
+  return material;
+}
 
 // x with every vertex moved by up to amount_m along each axis.
 inline std::vector<Vec3> perturbed(const std::vector<Vec3>& x, double amount_m, unsigned seed) {
