@@ -36,7 +36,11 @@ struct Stepped {
   CorotationalFem fem;
   std::vector<Vec3> x, v;
   Stepped(const Swing& swing, const std::vector<Vec3>& x0) : fem(swing.fem) { start_at(x0); }
-  void start_at(const std::vector<Vec3>& x0) { x = x0, v.assign(x0.size(), Vec3::Zero()); }  // the model keeps its state
+  // A new start, at rest; the model keeps its state (warm starts, kept rotations).
+  void start_at(const std::vector<Vec3>& x0) {
+    x = x0;
+    v.assign(x0.size(), Vec3::Zero());
+  }
   void step(const Swing& swing) { fem.step(x, v, swing.f, 1e-3); }
 };
 
@@ -105,7 +109,8 @@ TEST_CASE("corotational FEM: a step drops the rotations measured from the warm s
   Stepped measured(swing, b), plain(swing, b);
   measured.fem.elastic_energy_j(a);
   step_both(swing, measured, plain);
-  measured.start_at(a), plain.start_at(a);
+  measured.start_at(a);
+  plain.start_at(a);
   step_both(swing, measured, plain);
   CHECK(measured.fem.kept_rotations_taken() == 0);
 }
