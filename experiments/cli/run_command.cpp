@@ -79,8 +79,8 @@ class RunCommand final : public Command {
                     "Pin the handling thread to this CPU (recorded in run.json; exit 2 when not allowed here)")
         ->check(whole_number(0, 4095));
     app->add_option("--threads", m_threads,
-                    "Threads for the collision cycle's tet hashing, point queries and border depths (the scene's "
-                    "collision.threads; default 1, "
+                    "Threads for the collision cycle's tet and surface hashing, point queries, border depths and "
+                    "forces (the scene's collision.threads; default 1, "
                     "which keeps wall-clock budgets on one core; the results are the same for every count; "
                     "above 1, run.json records the cores' handover ratio, which the times depend on)")
         ->check(whole_number(1, 64));

@@ -24,10 +24,11 @@
 // of the tets; 125 is the default, kKeepTableRehashShare).
 // fresh_hash_share: the cycles that hashed afresh.
 // hash: 0 = mixed (default), 1 = the paper's xor of primes. threads: the
-// cycle's collision.threads (its tet hashing, point queries and border depths
-// in parallel; the same contacts on every count, which the counter
-// `colliding` shows; above one thread, handover_before and handover_after give
-// the vCPUs' handover ratio around the timed loop, as in BM_ThreadsPaired).
+// cycle's collision.threads (its tet and surface hashing, point queries,
+// border depths and forces in parallel; the same contacts on every count,
+// which the counter `colliding` shows; above one thread, handover_before and
+// handover_after give the vCPUs' handover ratio around the timed loop, as in
+// BM_ThreadsPaired).
 // ms_<stage>: the cycle's wall time per stage, per cycle.
 // BM_ThreadsPaired and BM_OrderPaired measure two cycles side by side (2
 // threads against 1; the detector's tets, or the dog pair itself, ordered
@@ -507,7 +508,7 @@ void BM_ThreadsPaired(benchmark::State& state) {
   }
   state.counters["colliding"] = static_cast<double>(cycles[0].contacts().size());
   // speedup_<stage>: the same ratio for each stage that took time (the
-  // serial ones, propagate and forces, show ~1).
+  // serial one, propagate, shows ~1).
   pair.stage_ratios(state, "speedup_", 0, 1);
   // ms1_<stage>, ms2_<stage>: the stage's time a cycle on 1 and 2 threads,
   // so a stage's loss (ms2 - ms1 / 2) can be weighed against the others'.

@@ -388,13 +388,11 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
           // The same task as below with its answer computed ahead: the same
           // contact and work, so budgets stop at the same point.
           if (!batch_holds(world)) query_batch(world, budget);
-          if (budget.kind() == BudgetKind::None && !(m_rehash_stale && m_fresh_step != world.step_index)) {
-            // Without a budget no task ends the step, and no refresh is due
-            // before the next (needs_refresh), so the loop's checks between
-            // tasks decide nothing: the answers before the batch's last are
-            // taken here, each still a task charged and counted as the
-            // loop's end does (serial: about 12 ns a query through the loop
-            // on the dog pair's 2-thread cycle).
+          if (checks_decide_nothing(world, budget)) {
+            // The answers before the batch's last are taken here, each still
+            // a task charged and counted as the loop's end does (serial:
+            // about 12 ns a query through the loop on the dog pair's
+            // 2-thread cycle).
             for (const std::size_t last = m_batch_begin + m_batch.size() - 1; m_cursor < last;) {
               const Answer& answer = m_batch[m_cursor++ - m_batch_begin];
               if (answer.part >= 0) add_contact(hit_of(answer));
@@ -545,7 +543,18 @@ bool CollisionCycle::advance(World& world, Budget& budget) {
         }
         break;
       case Stage::Forces:
-        if (m_cursor < m_contacts.size()) {
+        if (m_cursor < m_contacts.size() && m_pool) {
+          // The same task with its force computed ahead (see forces_batch).
+          if (!batch_holds(world)) forces_batch(world, budget);
+          if (checks_decide_nothing(world, budget))  // as the queries' (above)
+            for (const std::size_t last = m_batch_begin + m_batch.size() - 1; m_cursor < last; ++m_cursor) {
+              m_contacts[m_cursor].force_n = m_batch_forces[m_cursor - m_batch_begin];
+              count_task(budget, task_stage, work::kForce);
+            }
+          m_contacts[m_cursor].force_n = m_batch_forces[m_cursor - m_batch_begin];
+          ++m_cursor;
+          work = work::kForce;
+        } else if (m_cursor < m_contacts.size()) {
           Contact& c = m_contacts[m_cursor++];
           c.force_n = penalty_force(world, c, m_settings.response(c.object, c.other), m_settings.dt_s);
           work = work::kForce;
@@ -608,10 +617,10 @@ std::size_t CollisionCycle::batch_size(std::size_t remaining, const Budget& budg
   if (budget.kind() == BudgetKind::None) return remaining;
   std::size_t size = kPerThread * threads;
   if (budget.kind() == BudgetKind::Work) {
-    // Every query and border-depth task charges at least one unit, so no
-    // more tasks than units left run before the budget expires (and one
-    // when none are left: a step always runs a task). Answers beyond that
-    // would be dropped unread.
+    // Every query, border-depth and force task charges at least one unit,
+    // so no more tasks than units left run before the budget expires (and
+    // one when none are left: a step always runs a task). Answers beyond
+    // that would be dropped unread.
     const double left = std::ceil(budget.limit() - static_cast<double>(budget.spent()));
     size = left >= 1.0 ? static_cast<std::size_t>(std::min(left, static_cast<double>(size))) : 1;
   } else if (budget.kind() == BudgetKind::WallMs) {
@@ -696,6 +705,25 @@ void CollisionCycle::depth_batch(const World& world, const Budget& budget) {
   run_batch(m_contacts.size() - m_cursor, kDepthChunk, world, budget, depths);
 }
 
+void CollisionCycle::forces_batch(const World& world, const Budget& budget) {
+  // A penalty force reads its own contact and the world only.
+  m_batch_forces.resize(m_contacts.size() - m_cursor);
+  const auto forces = [&](int, std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const Contact& c = m_contacts[m_batch_begin + i];
+      m_batch_forces[i] = penalty_force(world, c, m_settings.response(c.object, c.other), m_settings.dt_s);
+      m_batch[i].work = work::kForce;
+    }
+  };
+  run_batch(m_contacts.size() - m_cursor, kForceChunk, world, budget, forces);
+}
+
+bool CollisionCycle::checks_decide_nothing(const World& world, const Budget& budget) const {
+  // Without a budget no task ends the step, and no refresh is due before the
+  // next (needs_refresh), so the loop's checks between tasks decide nothing.
+  return budget.kind() == BudgetKind::None && !(m_rehash_stale && m_fresh_step != world.step_index);
+}
+
 void CollisionCycle::query_batch(const World& world, const Budget& budget) {
   const auto queries = [&](int part, std::size_t begin, std::size_t end) {
     TetHashDetector::QueryScratch& scratch = m_thread_scratch[static_cast<std::size_t>(part)];
@@ -720,8 +748,9 @@ std::size_t CollisionCycle::memory_bytes() const {
   std::size_t bytes = m_detector.memory_bytes() + m_surface.memory_bytes() + heap_bytes(m_query_order) +
                       heap_bytes(m_queries) + heap_bytes(m_surface_bodies) + heap_bytes(m_layer_items) +
                       heap_bytes(m_layer_sources) + heap_bytes(m_layer_mark) + heap_bytes(m_contacts) +
-                      heap_bytes(m_lookup) + heap_bytes(m_batch) + heap_bytes(m_thread_scratch) +
-                      heap_bytes(m_thread_hits) + heap_bytes(m_surface_scratch) + heap_bytes(m_surface_work);
+                      heap_bytes(m_lookup) + heap_bytes(m_batch) + heap_bytes(m_batch_forces) +
+                      heap_bytes(m_thread_scratch) + heap_bytes(m_thread_hits) + heap_bytes(m_surface_scratch) +
+                      heap_bytes(m_surface_work);
   for (const auto& s : m_thread_scratch) bytes += heap_bytes(s.tested);
   for (const auto& t : m_thread_hits) bytes += heap_bytes(t.hits);
   for (const auto& s : m_surface_scratch) bytes += heap_bytes(s.seen);

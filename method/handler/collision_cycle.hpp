@@ -98,7 +98,11 @@
 /// stop it; each triangle's work is charged as its own task would be, and
 /// the table is built at once (under fine tasks no BuildSurfaceHash tasks
 /// follow: they charge nothing). Under a wall budget it stays one triangle a
-/// task. Propagation and forces stay on one thread.
+/// task. The Forces stage's penalty forces are computed ahead in batches
+/// the same way (a force reads its own contact and the world only; the
+/// stage's 2-thread speed-up went from 0.96-1.09 to 1.48-1.79 in most
+/// rounds). Propagation stays on one thread: batched, its stage gained
+/// nothing measurable (docs/performance.md, "Tried and not kept").
 ///
 /// On one thread (no pool) the HashSurface stage runs as a whole too, but
 /// only without a budget (on a pool of the calling thread, whose owners'
@@ -325,6 +329,11 @@ class CollisionCycle {
                  const WorkerPool::RangeFunction& f);
   bool depth_batch_allowed(const World& world);
   void depth_batch(const World& world, const Budget& budget);
+  /// The penalty forces from the cursor on, ahead (into m_batch_forces).
+  void forces_batch(const World& world, const Budget& budget);
+  /// Without a budget and with no refresh due, a batch's answers may be
+  /// taken without the loop's checks between tasks (each still counted).
+  bool checks_decide_nothing(const World& world, const Budget& budget) const;
 
   CollisionSettings m_settings;
   DetectionMode m_mode;
@@ -399,6 +408,7 @@ class CollisionCycle {
   std::vector<TetHashDetector::QueryScratch> m_thread_scratch;  // one per thread
   std::vector<ThreadHits> m_thread_hits;                        // one per thread: the batch's contacts
   std::vector<Answer> m_batch;          // answers for query positions [m_batch_begin, m_batch_begin + size)
+  std::vector<Vec3> m_batch_forces;     // Forces: the batch's forces, beside its answers
   std::size_t m_batch_begin = 0;
   std::int64_t m_batch_step = -1;       // the step whose positions and tables they were computed at
   std::vector<SurfaceHash::QueryScratch> m_surface_scratch;  // [0] the serial path's; with a pool, one a thread
@@ -415,10 +425,12 @@ class CollisionCycle {
 /// yet, then 4 a thread), at least one a thread, at most `most`.
 std::size_t wall_batch_items(double left_ms, double item_ms, std::size_t threads, std::size_t most);
 
-/// The most items a chunk of a batch takes: point queries, mostly a few tens
-/// of nanoseconds each, and border depths, about a microsecond each (dog pair).
+/// The most items a chunk of a batch takes: point queries and penalty
+/// forces, mostly a few tens of nanoseconds each, and border depths, about a
+/// microsecond each (dog pair).
 inline constexpr std::size_t kQueryChunk = 128;
 inline constexpr std::size_t kDepthChunk = 16;
+inline constexpr std::size_t kForceChunk = 128;
 /// How many items the pool's threads take at a time from a batch of `size`
 /// items: a quarter of a thread's share, at least 16 (and at least one), at
 /// most `max_chunk` (which wins over the 16).

@@ -39,9 +39,9 @@ struct CollisionDesc {
   /// the bodies (default) or as explicit external forces (the method before).
   ResponseMode response_mode = ResponseMode::Implicit;
   std::vector<CollisionPairDesc> pairs;
-  /// Threads for the cycle's tet hashing, point queries and border depths
-  /// (collision_cycle.hpp); 1 = none started. The results are the same for
-  /// every count.
+  /// Threads for the cycle's tet and surface hashing, point queries, border
+  /// depths and forces (collision_cycle.hpp); 1 = none started. The results
+  /// are the same for every count.
   int threads = 1;
 };
 

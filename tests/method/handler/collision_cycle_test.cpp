@@ -134,11 +134,12 @@ TEST_CASE("the paper's layers, each grown from the last layer's points, are a sc
 
 TEST_CASE("threads change neither contacts, depths nor any task's work, one task a call or all at once",
           "[cycle][threads]") {
-  // With collision.threads > 1 the queries and the paper's border depths are
-  // computed ahead in batches (64 a thread under a work budget, sized by the
-  // time left under a wall budget, everything without one) and taken one a
-  // task: every task's work and stage, and every field of every contact in
-  // list order, must be one thread's.
+  // With collision.threads > 1 the queries, the paper's border depths and
+  // the forces are computed ahead in batches (64 a thread under a work
+  // budget, sized by the time left under a wall budget, everything without
+  // one) and taken one a task: every task's work and stage, and every field
+  // of every contact in list order, must be one thread's.
+  std::size_t pushed = 0;  // contacts with a force, one thread, all scenes: so force batches were used
   for (const auto& [name, scene] : test::collision_scenes()) {
     INFO(name);
     using Trace = std::vector<std::pair<int, std::uint64_t>>;  // per task: stage, work
@@ -203,6 +204,7 @@ TEST_CASE("threads change neither contacts, depths nor any task's work, one task
         CHECK(std::count_if(serial_single.begin(), serial_single.end(), [](const auto& f) {
                 return std::get<4>(f) == static_cast<int>(DepthSource::Border);
               }) > 0);  // border depths were computed, so their batches were used
+        for (const Contact& c : serial_contacts) pushed += c.force_n != Vec3::Zero();
       } else {
         CHECK(trace == serial_trace);
         CHECK(same_contacts(cycle.contacts(), serial_contacts));
@@ -231,6 +233,7 @@ TEST_CASE("threads change neither contacts, depths nor any task's work, one task
       }
     }
   }
+  CHECK(pushed > 0);
 }
 
 TEST_CASE("the surface hash as a whole is charged as one triangle a task, and runs only when the budget affords it",
