@@ -706,13 +706,13 @@ void CollisionCycle::depth_batch(const World& world, const Budget& budget) {
 }
 
 void CollisionCycle::forces_batch(const World& world, const Budget& budget) {
-  // A penalty force reads its own contact and the world only.
+  // A penalty force reads its own contact and the world only. Every force
+  // task charges work::kForce, so the answers' work is left unread.
   m_batch_forces.resize(m_contacts.size() - m_cursor);
   const auto forces = [&](int, std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
       const Contact& c = m_contacts[m_batch_begin + i];
       m_batch_forces[i] = penalty_force(world, c, m_settings.response(c.object, c.other), m_settings.dt_s);
-      m_batch[i].work = work::kForce;
     }
   };
   run_batch(m_contacts.size() - m_cursor, kForceChunk, world, budget, forces);

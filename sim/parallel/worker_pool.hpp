@@ -1,7 +1,7 @@
 #pragma once
 /// A fixed set of threads that run one function over index ranges and wait
 /// for it: the collision cycle's parallel tet and surface hashing, point
-/// queries and border depths (collision.threads). Threads inherit the
+/// queries, border depths and forces (collision.threads). Threads inherit the
 /// creating thread's CPU affinity, so a pool started on a pinned thread
 /// shares its CPU. Plain std::thread, not TBB: the work is one flat loop,
 /// with nothing to nest. for_ranges() splits it into static ranges, one a

@@ -348,9 +348,10 @@ TEST_CASE("full with keep_table is full's run apart from timings and the hashing
 
 TEST_CASE("under a work budget two runs are identical apart from timings, whatever the thread count", "[run]") {
   // The paper's task granularity, our fine tasks (resumable hashing), with
-  // rehashed stale tets, and our fastest-first order. The second run answers
-  // its point queries on 3 threads (collision.threads): the work charged, so
-  // where the budget stops, and everything that follows must not change.
+  // rehashed stale tets, and our fastest-first order. The second run runs
+  // its cycle on 3 threads (collision.threads: hashing, point queries, border
+  // depths and forces): the work charged, so where the budget stops, and
+  // everything that follows must not change.
   struct Case {
     std::string method;
     bool fine, rehash, keep;

@@ -230,6 +230,7 @@ TEST_CASE("threads change neither contacts, depths nor any task's work, one task
         }
         CHECK(calls > 1);
         CHECK(found(timed) == serial_single);
+        CHECK(same_contacts(timed.contacts(), serial_contacts));  // the forces too
       }
     }
   }
@@ -306,6 +307,9 @@ TEST_CASE("threads change nothing when a cycle spans moving steps and re-detects
   // every step: cycles span steps, so BorderDepth re-detects points detected
   // in earlier steps (some move out) and must run them serially. Every
   // call's work and stage, and every contact field, must be one thread's.
+  // The moved body's velocity changes every step too, and the contacts are
+  // damped and have friction, so a force computed at an earlier step's
+  // velocities (a batch kept past its step) would differ.
   for (const auto& [name, scene] : test::collision_scenes()) {
     INFO(name);
     using Trace = std::vector<std::tuple<int, std::uint64_t, int>>;  // per call: stage after, work, done
@@ -317,6 +321,10 @@ TEST_CASE("threads change nothing when a cycle spans moving steps and re-detects
       World w = build_world(scene);
       CollisionSettings settings = test::settings_of(w, scene);
       settings.threads = threads;
+      for (ResponseParams& r : settings.pair_response) {
+        r.damping_n_s_per_m = 20.0;
+        r.friction = 0.3;
+      }
       CollisionCycle cycle(w, settings);
       Trace trace;
       for (int cycles = 0; cycles < 3; ++cycles) {
@@ -330,6 +338,8 @@ TEST_CASE("threads change nothing when a cycle spans moving steps and re-detects
           if (done && threads == 1)
             for (const Contact& c : cycle.contacts()) redetected |= c.detected_step > queried_at || c.separated;
           for (Vec3& x : w.bodies.back().x_m) x += Vec3(0.0005, -0.0003, 0.0002);
+          const double speed_up = 1.0 + 0.1 * static_cast<double>(trace.size());
+          for (Vec3& v : w.bodies.back().v_m_per_s) v = speed_up * Vec3(0.5, -0.3, 0.2);
           ++w.step_index;
           REQUIRE(trace.size() < 1000000);
         }
@@ -344,6 +354,55 @@ TEST_CASE("threads change nothing when a cycle spans moving steps and re-detects
     }
     CHECK(redetected);  // the serial path after a re-detection really ran
   }
+}
+
+TEST_CASE("under a wall budget a force is the penalty force at the step its task ran, on any thread count",
+          "[cycle][threads]") {
+  // On threads the forces are computed ahead in batches, and a wall budget
+  // may stop a batch half taken. The bodies move and change speed between
+  // steps, and the contacts are damped and have friction, so a force taken
+  // from a batch made in an earlier step would not be this step's penalty
+  // force. A clock ticking 1 ms a reading, 5 ms a call, stops cycles inside
+  // the Forces stage.
+  for (const auto& [name, scene] : test::collision_scenes())
+    for (const int threads : {1, 2, 3}) {
+      INFO(name << ", threads " << threads);
+      World w = build_world(scene);
+      CollisionSettings settings = test::settings_of(w, scene);
+      settings.threads = threads;
+      for (ResponseParams& r : settings.pair_response) {
+        r.damping_n_s_per_m = 20.0;
+        r.friction = 0.3;
+      }
+      double now = 0.0;
+      const ClockMs clock = [&now] { return now += 1.0; };
+      CollisionCycle cycle(w, settings);
+      cycle.set_clock(clock);
+      int checked = 0, stopped_in_forces = 0;
+      for (int cycles = 0; cycles < 2; ++cycles) {
+        cycle.begin(w);
+        for (bool done = false; !done;) {
+          const std::size_t before = cycle.forces_computed();
+          Budget budget = Budget::wall_ms(5.0, clock);
+          done = cycle.advance(w, budget);
+          const std::vector<Contact>& contacts = cycle.contacts();
+          for (std::size_t i = before; i < cycle.forces_computed(); ++i, ++checked) {
+            const Contact& c = contacts[i];
+            CHECK(c.force_n == penalty_force(w, c, settings.response(c.object, c.other), settings.dt_s));
+          }
+          stopped_in_forces += !done && cycle.stage() == CollisionCycle::Stage::Forces && cycle.forces_computed() > 0;
+          const double speed_up = 1.0 + 0.1 * static_cast<double>(w.step_index);
+          for (Vec3& x : w.bodies.back().x_m) x += Vec3(0.0002, -0.0001, 0.0001);
+          for (Vec3& v : w.bodies.back().v_m_per_s) v = speed_up * Vec3(0.5, -0.3, 0.2);
+          ++w.step_index;
+          REQUIRE(w.step_index < 1000000);
+        }
+      }
+      if (!cycle.contacts().empty()) {
+        CHECK(checked > 0);
+        CHECK(stopped_in_forces > 0);  // a step began with the stage half done
+      }
+    }
 }
 
 TEST_CASE("the cycle counts its memory: every per-tet array, a scratch more a thread, its contacts",
