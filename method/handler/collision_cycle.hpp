@@ -100,10 +100,10 @@
 /// follow: they charge nothing). Under a wall budget it stays one triangle a
 /// task. The Forces stage's penalty forces are computed ahead in batches
 /// as the point queries are, in every step a cycle runs them (a force reads
-/// its own contact and the world only; the
-/// stage's 2-thread speed-up went from 0.96-1.09 to 1.48-1.79 in most
-/// rounds). Propagation stays on one thread: batched, its stage gained
-/// nothing measurable (docs/performance.md, "Tried and not kept").
+/// its own contact and the world only; the stage's 2-thread speed-up went
+/// from 0.96-1.09 to 1.48-1.79 in most rounds). Propagation stays on one
+/// thread: batched, its stage gained nothing measurable
+/// (docs/performance.md, "Tried and not kept").
 ///
 /// On one thread (no pool) the HashSurface stage runs as a whole too, but
 /// only without a budget (on a pool of the calling thread, whose owners'
