@@ -43,6 +43,26 @@ bool same_contacts(const std::vector<Contact>& a, const std::vector<Contact>& b)
                     [&](const Contact& x, const Contact& y) { return key(x) == key(y); });
 }
 
+// The scene's settings on `threads` threads, every contact damped and with
+// friction, so a penalty force reads the bodies' velocities too.
+CollisionSettings damped_settings(const World& w, const test::TestScene& scene, int threads) {
+  CollisionSettings settings = test::settings_of(w, scene);
+  settings.threads = threads;
+  for (ResponseParams& r : settings.pair_response) {
+    r.damping_n_s_per_m = 20.0;
+    r.friction = 0.3;
+  }
+  return settings;
+}
+
+// The next step: the last body moved by `shift_m`, at a velocity growing with
+// `speed_up`, so a force computed at an earlier step's state would differ.
+void step_last_body(World& w, const Vec3& shift_m, double speed_up) {
+  for (Vec3& x : w.bodies.back().x_m) x += shift_m;
+  for (Vec3& v : w.bodies.back().v_m_per_s) v = speed_up * Vec3(0.5, -0.3, 0.2);
+  ++w.step_index;
+}
+
 struct SingleTasks {
   Found found;
   int calls = 0;
@@ -319,12 +339,7 @@ TEST_CASE("threads change nothing when a cycle spans moving steps and re-detects
     for (const int threads : {1, 2, 3}) {
       INFO("threads " << threads);
       World w = build_world(scene);
-      CollisionSettings settings = test::settings_of(w, scene);
-      settings.threads = threads;
-      for (ResponseParams& r : settings.pair_response) {
-        r.damping_n_s_per_m = 20.0;
-        r.friction = 0.3;
-      }
+      const CollisionSettings settings = damped_settings(w, scene, threads);
       CollisionCycle cycle(w, settings);
       Trace trace;
       for (int cycles = 0; cycles < 3; ++cycles) {
@@ -337,10 +352,7 @@ TEST_CASE("threads change nothing when a cycle spans moving steps and re-detects
           if (queried_at < 0 && (done || cycle.stage() > CollisionCycle::Stage::QueryPoints)) queried_at = w.step_index;
           if (done && threads == 1)
             for (const Contact& c : cycle.contacts()) redetected |= c.detected_step > queried_at || c.separated;
-          for (Vec3& x : w.bodies.back().x_m) x += Vec3(0.0005, -0.0003, 0.0002);
-          const double speed_up = 1.0 + 0.1 * static_cast<double>(trace.size());
-          for (Vec3& v : w.bodies.back().v_m_per_s) v = speed_up * Vec3(0.5, -0.3, 0.2);
-          ++w.step_index;
+          step_last_body(w, Vec3(0.0005, -0.0003, 0.0002), 1.0 + 0.1 * static_cast<double>(trace.size()));
           REQUIRE(trace.size() < 1000000);
         }
       }
@@ -368,12 +380,7 @@ TEST_CASE("under a wall budget a force is the penalty force at the step its task
     for (const int threads : {1, 2, 3}) {
       INFO(name << ", threads " << threads);
       World w = build_world(scene);
-      CollisionSettings settings = test::settings_of(w, scene);
-      settings.threads = threads;
-      for (ResponseParams& r : settings.pair_response) {
-        r.damping_n_s_per_m = 20.0;
-        r.friction = 0.3;
-      }
+      const CollisionSettings settings = damped_settings(w, scene, threads);
       double now = 0.0;
       const ClockMs clock = [&now] { return now += 1.0; };
       CollisionCycle cycle(w, settings);
@@ -391,10 +398,7 @@ TEST_CASE("under a wall budget a force is the penalty force at the step its task
             CHECK(c.force_n == penalty_force(w, c, settings.response(c.object, c.other), settings.dt_s));
           }
           stopped_in_forces += !done && cycle.stage() == CollisionCycle::Stage::Forces && cycle.forces_computed() > 0;
-          const double speed_up = 1.0 + 0.1 * static_cast<double>(w.step_index);
-          for (Vec3& x : w.bodies.back().x_m) x += Vec3(0.0002, -0.0001, 0.0001);
-          for (Vec3& v : w.bodies.back().v_m_per_s) v = speed_up * Vec3(0.5, -0.3, 0.2);
-          ++w.step_index;
+          step_last_body(w, Vec3(0.0002, -0.0001, 0.0001), 1.0 + 0.1 * static_cast<double>(w.step_index));
           REQUIRE(w.step_index < 1000000);
         }
       }
