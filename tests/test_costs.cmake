@@ -6,8 +6,9 @@
 # core idle. Once a build has run its tests, ctest's measured costs replace
 # these. Included by ctest after the discovered tests (TEST_INCLUDE_FILES in
 # tests/CMakeLists.txt); a name that no longer exists is ignored, so a renamed
-# test only loses its place in the queue. Figures: one Release and one ASan
-# run on 2 cores, the larger of the two.
+# test only loses its place in the queue. The long add_test commands get
+# their COST where they are declared: ctest reads this file before them.
+# Figures: one Release and one ASan run on 2 cores, the larger of the two.
 set_tests_properties([=[interruptible without a budget gives full's forces on every step of plates20 and cube_drop]=] PROPERTIES COST 142)
 set_tests_properties([=[a query is charged a unit and a candidate for each tet of an enabled body whose stored box holds the point, before and after motion and after a refresh, in every scene]=] PROPERTIES COST 118)
 set_tests_properties([=[degenerate poses: touching objects in 10,000 exact motions: hash = brute force, order-free, motion-free]=] PROPERTIES COST 110)
