@@ -15,11 +15,25 @@ std::vector<ColumnSpec> with_step_columns(const std::vector<ColumnSpec>& columns
   return all;
 }
 
+// What an earlier run left in `dir` that this one may not overwrite: a run
+// without --record or --trajectory writes no frames, replay or trajectory,
+// and those of the earlier run would then sit beside the new run.json, read
+// as this run's by `--reference` and `tcbench view`. run.json goes first, so
+// the directory reads as incomplete until finish(). Only the files a run
+// writes are removed (a sweep's log.txt beside them is the sweep's).
+void remove_earlier_run(const std::filesystem::path& dir) {
+  namespace fs = std::filesystem;
+  for (const char* name : {"run.json", "steps.csv", "frames.pvd", "trajectory.bin", "replay.json", "replay.bin",
+                           "probe_path.csv"})
+    fs::remove(dir / name);
+  fs::remove_all(dir / "frames");
+}
+
 }  // namespace
 
 RunRecord::RunRecord(const std::filesystem::path& dir, const std::vector<ColumnSpec>& columns, int frame_every,
                      const World& initial, int trajectory_every)
-    : m_dir((std::filesystem::create_directories(dir), dir)),
+    : m_dir((std::filesystem::create_directories(dir), remove_earlier_run(dir), dir)),
       m_csv(dir / "steps.csv", with_step_columns(columns)),
       m_frame_every(frame_every) {
   if (m_frame_every > 0) write_frame(initial);

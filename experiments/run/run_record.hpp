@@ -21,7 +21,8 @@ namespace tcb {
 
 class RunRecord {
  public:
-  /// Creates the directory and starts steps.csv with the columns step,
+  /// Creates the directory, removes the files an earlier run left in it
+  /// (run.json first; see remove_earlier_run), and starts steps.csv with the columns step,
   /// time_s and then `columns`. A VTU frame is written every `frame_every`
   /// steps (0: none), the first one of the initial state right away.
   /// trajectory.bin gets the state every `trajectory_every` steps (0: no file).
