@@ -44,11 +44,18 @@ int run_cli(int argc, const char* const* argv) {
       return 2;
     }
   }
+  // Help and version as CLI11 prints them; a usage error as every other bad
+  // input is said: one line, with where to read more.
+  const auto parse_failure = [&](const CLI::ParseError& e) {
+    if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e);
+    const std::string help = argc >= 2 && argv[1][0] != '-' ? "tcbench " + std::string(argv[1]) + " --help" : "tcbench --help";
+    std::cerr << "tcbench: error: " << e.what() << " (" << help << ")\n";
+    return 2;
+  };
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : 2;
+    return parse_failure(e);
   }
   for (const auto& command : commands) {
     if (!command->app->parsed()) continue;
@@ -56,8 +63,7 @@ int run_cli(int argc, const char* const* argv) {
     try {
       return command->execute();
     } catch (const CLI::ParseError& e) {
-      const int code = command->app->exit(e);
-      return code == 0 ? 0 : 2;
+      return parse_failure(e);
     } catch (const InputError& e) {
       std::cerr << "tcbench: error: " << e.what() << '\n';
       return 2;

@@ -10,7 +10,7 @@
 
 #include "baselines/registry.hpp"
 #include "experiments/cli/command.hpp"
-#include "experiments/cli/whole_number.hpp"
+#include "experiments/cli/option_checks.hpp"
 #include "experiments/run/run_scene.hpp"
 #include "experiments/scene/scene_file.hpp"
 #include "experiments/view/live_session.hpp"
@@ -59,7 +59,7 @@ class LiveCommand final : public Command {
     app->add_option("--set", m_options.overrides, "Override a scene key, e.g. --set object.cow.material.youngs_modulus=2e5");
     app->add_option("--seconds", m_seconds, "Stop after this much simulated time (default 600 s)")
         ->check(whole_number(1, 86400));
-    app->add_option("--out", m_out, "Result directory (default: results/live/SCENE-METHOD)");
+    app->add_option("--out", m_out, "Result directory (default: results/live/SCENE-METHOD)")->check(non_empty_path());
     app->add_option("--port", m_port, "Port on 127.0.0.1; 0 picks a free one")->capture_default_str();
     app->add_option("--viewer", m_viewer, "The viewer page's directory (default: viewer/ in the source tree)");
   }

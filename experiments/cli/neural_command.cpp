@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "experiments/cli/command.hpp"
+#include "experiments/cli/option_checks.hpp"
 #include "experiments/neural/code_labels.hpp"
 #include "experiments/neural/finger_labeller.hpp"
 #include "experiments/neural/neural_experiment.hpp"
@@ -48,21 +49,21 @@ class NeuralCommand final : public Command {
         "distance moved and the oracle's reference distance) and DIR/neural.json (settings, build,\n"
         "machine, label and training cost). Presets: finger_small, finger_large.\n"
         "Exit status: 0 written; 2 bad input.");
-    m_experiment->add_option("--out", m_out, "Result directory")->capture_default_str();
+    m_experiment->add_option("--out", m_out, "Result directory")->check(non_empty_path())->capture_default_str();
     m_experiment->add_flag("--quick", m_quick, "Fewer seeds, labels and codes (a smoke run of about a minute)");
     m_experiment->add_option("--preset", m_presets, "Latent families to run (repeatable; default: finger_small and finger_large, --quick: finger_small)");
     m_experiment->add_option("--seeds", m_seed_count, "Training seeds 1..N (default: 3, --quick 2)")
-        ->check(CLI::Range(1, 100));
+        ->check(whole_number(1, 100));
     m_experiment->add_option("--rounds", m_rounds, "Learning rounds after the bootstrap (default 8, --quick 4)")
-        ->check(CLI::Range(0, 10000));
+        ->check(whole_number(0, 10000));
     m_experiment->add_option("--labels-per-round", m_labels_per_round, "Labels each round adds (default 100, --quick 50)")
-        ->check(CLI::Range(1, 1000000));
+        ->check(whole_number(1, 1000000));
     m_experiment->add_option("--steps-per-round", m_steps_per_round, "Adam steps each round (default 500, --quick 200)")
-        ->check(CLI::Range(0, 100000000));
+        ->check(whole_number(0, 100000000));
     m_experiment->add_option("--test-codes", m_test_codes, "Held-out codes (default 2000, --quick 600)")
-        ->check(CLI::Range(1, 10000000));
+        ->check(whole_number(1, 10000000));
     m_experiment->add_option("--jobs", m_jobs, "Worker threads (the results do not depend on it)")
-        ->check(CLI::Range(1, 64))
+        ->check(whole_number(1, 64))
         ->capture_default_str();
     m_experiment->add_flag("--quiet", m_quiet, "No progress lines");
 
@@ -72,17 +73,17 @@ class NeuralCommand final : public Command {
         "gradient steps, cost, build, machine). A scene names it as an object's latent_model.\n"
         "The same options give the same network, bit for bit, on one build.\n"
         "Exit status: 0 written; 2 bad input.");
-    m_train->add_option("--out", m_model, "The model file to write (.json)")->required();
+    m_train->add_option("--out", m_model, "The model file to write (.json)")->check(non_empty_path())->required();
     m_train->add_option("--preset", m_train_preset, "Latent family: finger_small or finger_large")->capture_default_str();
     m_train->add_option("--strategy", m_strategy, "active (samples pulled to the decision boundary) or supervised (uniform)")
         ->check(CLI::IsMember({"active", "supervised"}))
         ->capture_default_str();
-    m_train->add_option("--seed", m_train_seed, "Training seed")->check(CLI::Range(0, 1000000000))->capture_default_str();
-    m_train->add_option("--rounds", m_rounds, "Learning rounds after the bootstrap (default 8)")->check(CLI::Range(0, 10000));
+    m_train->add_option("--seed", m_train_seed, "Training seed")->check(whole_number(0, 1000000000))->capture_default_str();
+    m_train->add_option("--rounds", m_rounds, "Learning rounds after the bootstrap (default 8)")->check(whole_number(0, 10000));
     m_train->add_option("--labels-per-round", m_labels_per_round, "Labels each round adds (default 100)")
-        ->check(CLI::Range(1, 1000000));
+        ->check(whole_number(1, 1000000));
     m_train->add_option("--steps-per-round", m_steps_per_round, "Adam steps each round (default 500)")
-        ->check(CLI::Range(0, 100000000));
+        ->check(whole_number(0, 100000000));
     m_train->add_flag("--quiet", m_quiet, "No progress lines");
 
     m_gen = app->add_subcommand("gen", "Write uniformly drawn codes with their exact labels (a data set for your own detector)");
@@ -90,10 +91,10 @@ class NeuralCommand final : public Command {
         "Writes OUT.csv: z0..z11, collides (the oracle: some vertex inside tets of a part outside its own\n"
         "neighbourhood), pd_m (the largest true vertex depth, m). The same --seed gives the same codes.\n"
         "Exit status: 0 written; 2 bad input.");
-    m_gen->add_option("--out", m_gen_out, "The CSV file to write")->required();
+    m_gen->add_option("--out", m_gen_out, "The CSV file to write")->check(non_empty_path())->required();
     m_gen->add_option("--preset", m_gen_preset, "Latent family: finger_small or finger_large")->capture_default_str();
-    m_gen->add_option("--codes", m_gen_codes, "How many codes")->check(CLI::Range(1, 100000000))->capture_default_str();
-    m_gen->add_option("--seed", m_gen_seed, "Seed of the draw")->check(CLI::Range(0, 1000000000))->capture_default_str();
+    m_gen->add_option("--codes", m_gen_codes, "How many codes")->check(whole_number(1, 100000000))->capture_default_str();
+    m_gen->add_option("--seed", m_gen_seed, "Seed of the draw")->check(whole_number(0, 1000000000))->capture_default_str();
 
     m_alm = app->add_subcommand("alm", "Resolve the colliding frames of a latent path with the ALM, under a work budget per step");
     m_alm->footer(
@@ -107,13 +108,13 @@ class NeuralCommand final : public Command {
         "Exit status: 0 written; 2 bad input.");
     m_alm->add_option("--model", m_alm_model, "The network (tcbench neural train)")->required();
     m_alm->add_option("--path", m_alm_path, "A latent path CSV (time_s,z0,...)")->required();
-    m_alm->add_option("--out", m_alm_out, "The CSV file to write")->required();
+    m_alm->add_option("--out", m_alm_out, "The CSV file to write")->check(non_empty_path())->required();
     m_alm->add_option("--preset", m_alm_preset, "The model's latent family")->capture_default_str();
     m_alm->add_option("--margin", m_alm_margin, "Constraint margin in logits: logit + margin <= 0")
-        ->check(CLI::Range(-100.0, 100.0))
+        ->check(decimal_number(-100.0, 100.0))
         ->capture_default_str();
     m_alm->add_option("--budget-work", m_alm_work, "Network evaluations per step (0: unlimited, one step)")
-        ->check(CLI::Range(0, 1000000000))
+        ->check(whole_number(0, 1000000000))
         ->capture_default_str();
   }
 

@@ -1,8 +1,10 @@
-#include "experiments/cli/whole_number.hpp"
+#include "experiments/cli/option_checks.hpp"
 
 #include <fmt/format.h>
 
 #include <charconv>
+#include <cmath>
+#include <cstdlib>
 
 namespace tcb::cli {
 
@@ -20,6 +22,26 @@ CLI::Validator whole_number(std::int64_t min, std::int64_t max) {
         return {};
       },
       fmt::format("INT in [{} .. {}]", min, max));
+}
+
+CLI::Validator decimal_number(double min, double max) {
+  const std::string allowed = fmt::format("allowed: {} .. {}", min, max);
+  return CLI::Validator(
+      [min, max, allowed](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double value = text.empty() ? 0.0 : std::strtod(text.c_str(), &end);
+        if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(value))
+          return fmt::format("'{}' is not a finite number; {}", text, allowed);
+        if (value < min || value > max) return fmt::format("{} is out of range; {}", text, allowed);
+        return {};
+      },
+      fmt::format("NUMBER in [{} .. {}]", min, max));
+}
+
+CLI::Validator non_empty_path() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string { return text.empty() ? "is empty; name a file or directory" : ""; },
+      "");
 }
 
 }  // namespace tcb::cli

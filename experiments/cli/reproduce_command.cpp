@@ -16,6 +16,7 @@
 #include "experiments/check/thresholds.hpp"
 #include "experiments/run/thread_clock.hpp"
 #include "experiments/cli/command.hpp"
+#include "experiments/cli/option_checks.hpp"
 #include "experiments/cli/report_runner.hpp"
 #include "experiments/cli/screenshot_runner.hpp"
 #include "experiments/neural/neural_experiment.hpp"
@@ -43,7 +44,7 @@ class ReproduceCommand final : public Command {
         "report still shows it); 2 bad input.");
     app->add_flag("--quick", m_options.quick, "Shortened runs (each sweep's quick_steps)");
     app->add_flag("--resume", m_options.resume, "Keep complete runs of an earlier reproduce in DIR");
-    app->add_option("--out", m_out, "Result directory")->capture_default_str();
+    app->add_option("--out", m_out, "Result directory")->check(non_empty_path())->capture_default_str();
     app->add_option("--pin", m_pin, "The CPU the runs are pinned to, or auto (the highest this process may use)")
         ->capture_default_str();
   }

@@ -5,7 +5,7 @@
 #include <iostream>
 
 #include "experiments/cli/command.hpp"
-#include "experiments/cli/whole_number.hpp"
+#include "experiments/cli/option_checks.hpp"
 #include "experiments/cli/progress_line.hpp"
 #include "experiments/run/run_scene.hpp"
 #include "experiments/scene/scene_file.hpp"
@@ -74,7 +74,7 @@ class RunCommand final : public Command {
     app->add_option("--reference", m_options.reference_dir,
                     "A reference run's directory (made with --trajectory): divergence from it, per recorded step "
                     "(summary: divergence)");
-    app->add_option("--out", m_out, "Result directory (default: results/runs/SCENE-METHOD)");
+    app->add_option("--out", m_out, "Result directory (default: results/runs/SCENE-METHOD)")->check(non_empty_path());
     app->add_option("--pin", m_pin,
                     "Pin the handling thread to this CPU (recorded in run.json; exit 2 when not allowed here)")
         ->check(whole_number(0, 4095));
@@ -115,6 +115,12 @@ class RunCommand final : public Command {
     m_options.seed = parse_seed(m_seed);
     m_options.out_dir = m_out.empty() ? std::filesystem::path("results/runs") / (scene.name + "-" + m_options.method)
                                       : std::filesystem::path(m_out);
+    // The run replaces the files of an earlier run in its directory, the
+    // reference's trajectory among them.
+    if (!m_options.reference_dir.empty() && std::filesystem::exists(m_options.out_dir) &&
+        std::filesystem::exists(m_options.reference_dir) &&
+        std::filesystem::equivalent(m_options.reference_dir, m_options.out_dir))
+      throw InputError("--reference", 0, "is the --out directory, whose files this run replaces; write the run elsewhere");
     m_options.argv = argv;
     ProgressLine progress(fmt::format("{} [{}]", scene.name, m_options.method), !m_quiet && stderr_is_terminal());
     m_options.on_step = [&](std::int64_t done, std::int64_t total) { progress.update(done, total); };

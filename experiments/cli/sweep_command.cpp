@@ -5,7 +5,7 @@
 #include <iostream>
 
 #include "experiments/cli/command.hpp"
-#include "experiments/cli/whole_number.hpp"
+#include "experiments/cli/option_checks.hpp"
 #include "experiments/run/provenance.hpp"
 #include "experiments/sweep/slurm_script.hpp"
 #include "experiments/sweep/sweep_runner.hpp"
@@ -38,7 +38,7 @@ class SweepCommand final : public Command {
         "  parallel tcbench sweep my.toml --out DIR --shard {}/4 --resume ::: 0 1 2 3\n"
         "The last shard to finish writes the complete summary.csv (or rerun with --resume: nothing is redone).");
     app->add_option("SWEEP", m_file, "The sweep file (.toml); see experiments/sweeps/")->required();
-    app->add_option("--out", m_out, "Result directory")->required();
+    app->add_option("--out", m_out, "Result directory")->check(non_empty_path())->required();
     app->add_option("--jobs", m_options.jobs, "Runs at once (wall-clock budgets are only meaningful with 1)")
         ->check(whole_number(1, 1024))
         ->capture_default_str();

@@ -109,6 +109,33 @@ TEST_CASE("cli: run exit codes 0, 1 and 2", "[cli]") {
   fs::remove_all(dir);
 }
 
+TEST_CASE("cli: a run into an earlier run's directory leaves none of the earlier run's files", "[cli]") {
+  // Without --record and --trajectory the second run writes no frames, replay
+  // or trajectory; the first run's would otherwise pass for its own, to
+  // --reference and to tcbench view.
+  const fs::path dir = fresh_dir("rerun");
+  REQUIRE(cli({"run", "cube_drop", "--steps", "4", "--record", "2", "--trajectory", "2", "--out", dir.string(),
+               "--quiet"})
+              .code == 0);
+  for (const char* name : {"replay.json", "replay.bin", "frames.pvd", "frames", "trajectory.bin"})
+    REQUIRE(fs::exists(dir / name));
+  tcb::write_file_atomically(dir / "log.txt", "a sweep's log of this run\n");
+  REQUIRE(cli({"run", "cube_drop", "--steps", "2", "--out", dir.string(), "--quiet"}).code == 0);
+  for (const char* name : {"replay.json", "replay.bin", "frames.pvd", "frames", "trajectory.bin"}) {
+    INFO(name);
+    CHECK_FALSE(fs::exists(dir / name));
+  }
+  CHECK(nlohmann::json::parse(tcb::read_file(dir / "run.json"))["steps"] == 2);
+  CHECK(fs::exists(dir / "log.txt"));  // not a run's file
+  // Nor may a run take its own directory as the reference it replaces.
+  REQUIRE(cli({"run", "cube_drop", "--steps", "2", "--trajectory", "1", "--out", dir.string(), "--quiet"}).code == 0);
+  const Result same = cli({"run", "cube_drop", "--steps", "2", "--reference", dir.string(), "--out", dir.string()});
+  CHECK(same.code == 2);
+  CHECK_THAT(same.err, Catch::Matchers::Contains("--reference: is the --out directory"));
+  CHECK(fs::exists(dir / "trajectory.bin"));
+  fs::remove_all(dir);
+}
+
 TEST_CASE("cli: mesh info and convert", "[cli]") {
   const fs::path dir = fresh_dir("mesh");
   fs::create_directories(dir);
@@ -233,6 +260,14 @@ TEST_CASE("cli: messages say what was typed wrong and what is allowed (issue 15,
       {{"run", "cube_drop", "--steps", "-5"}, "--steps: -5 is out of range"},
       {{"run", "cube_drop", "--steps", "99999999999999999999999"}, "is out of range; allowed: 0 .. 1099511627776"},
       {{"run", "cube_drop", "--record", "0"}, "--record: 0 is out of range; allowed: 1 .."},
+      {{"neural", "gen", "--out", "c.csv", "--codes", "1e3"}, "--codes: '1e3' is not a whole number; allowed: 1 .."},
+      {{"neural", "alm", "--model", "m.json", "--path", "p.csv", "--out", "a.csv", "--margin", "nan"},
+       "--margin: 'nan' is not a finite number; allowed: -100 .. 100"},
+      {{"neural", "alm", "--model", "m.json", "--path", "p.csv", "--out", "a.csv", "--margin", "101"},
+       "--margin: 101 is out of range; allowed: -100 .. 100"},
+      {{"run", "cube_drop", "--out", ""}, "--out: is empty; name a file or directory"},
+      {{"sweep", "x.toml", "--out", ""}, "--out: is empty"},
+      {{"neural", "gen", "--out", ""}, "--out: is empty"},
       {{"frobnicate"}, "unknown command 'frobnicate' (commands: run, sweep, check, compare,"},
       {{}, "no command given (commands: run,"},
   };
@@ -244,5 +279,11 @@ TEST_CASE("cli: messages say what was typed wrong and what is allowed (issue 15,
     CHECK(r.code == 2);
     CHECK_THAT(r.err + r.out, Catch::Matchers::Contains(c.message));
     CHECK(r.err.find("not in range") == std::string::npos);  // CLI11's own, with DBL_MAX in 309 digits
+    // One line, as every bad input is said.
+    CHECK(r.err.rfind("tcbench: error: ", 0) == 0);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
   }
+  // A usage error points to the help of the command it was typed for.
+  CHECK_THAT(cli({"view", "some_dir", "--port", "abc"}).err,
+             Catch::Matchers::StartsWith("tcbench: error: ") && Catch::Matchers::EndsWith("(tcbench view --help)\n"));
 }
