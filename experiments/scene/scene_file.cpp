@@ -6,7 +6,6 @@
 #include <cstdlib>
 #include <map>
 #include <optional>
-#include <set>
 #include <sstream>
 
 #include "baselines/registry.hpp"
@@ -136,6 +135,10 @@ ObjectDesc read_object(const toml::table& table, std::size_t index, const std::f
     o.stack.gap_m = s.non_negative("gap", 0.0);
     o.stack.stagger_m = s.vec3("stagger").value_or(Vec3::Zero());
     if (o.stack.stagger_m[o.stack.axis] != 0.0) s.fail("stagger", "must be 0 along the stacking axis");
+    // A driven body's position comes from its path, so its copies would all
+    // be one body in one place; the world builder would make only one.
+    if (o.stack.count > 1 && (!o.trajectory.empty() || !o.latent_path.empty()))
+      s.fail("count", "a driven object (trajectory or latent_path) cannot be stacked");
     s.finish();
   }
   if (const toml::table* p = named.table("perturb")) {
@@ -195,15 +198,24 @@ void apply_override(toml::table& root, const std::string& assignment, Origins& o
       if (i + 1 >= keys.size()) throw InputError(origin, 0, "the path ends at a whole " + keys[i - 1]);
       continue;
     }
-    if (!next) next = &table->insert_or_assign(keys[i], toml::table{}).first->second;
+    if (!next) {  // a table the override makes: its errors are the override's
+      next = &table->insert_or_assign(keys[i], toml::table{}).first->second;
+      origins.overridden[next] = origin;
+    }
     if (!next->is_table()) throw InputError(origin, 0, "'" + keys[i] + "' is not a table");
     table = next->as_table();
   }
   value.visit([&](auto& concrete) { table->insert_or_assign(keys.back(), concrete); });
-  origins.overridden[table->get(keys.back())] = origin;
-  // Values nested inside an inserted array or table come from the override too.
-  if (toml::node* inserted = table->get(keys.back()); inserted->is_array())
-    for (auto& element : *inserted->as_array()) origins.overridden[&element] = origin;
+  // The value and everything nested in it (an inline table's keys, an
+  // array's elements, at any depth) come from the override.
+  const auto mark = [&](auto&& self, toml::node& node) -> void {
+    origins.overridden[&node] = origin;
+    if (toml::array* array = node.as_array())
+      for (toml::node& element : *array) self(self, element);
+    if (toml::table* inner = node.as_table())
+      for (auto&& [key, child] : *inner) self(self, child);
+  };
+  mark(mark, *table->get(keys.back()));
 }
 
 }  // namespace
@@ -229,6 +241,10 @@ SceneDesc parse_scene(const std::string& text, const std::filesystem::path& path
   if (const toml::table* s = top.table("scene")) {
     TableReader r(*s, "scene", file);
     scene.name = r.string("name").value_or(scene.name);
+    // It names result directories (`tcbench run`'s default --out).
+    if (scene.name.empty() || scene.name == "." || scene.name == ".." ||
+        scene.name.find_first_of("/\\") != std::string::npos)
+      r.fail("name", "must be a non-empty name without '/' or '\\', not '.' or '..' (it names result directories)");
     r.string("description");
     scene.world.dt_s = r.positive("dt", scene.world.dt_s);
     scene.steps = r.integer("steps", 0, std::int64_t(1) << 40).value_or(scene.steps);
@@ -340,11 +356,20 @@ SceneDesc parse_scene(const std::string& text, const std::filesystem::path& path
     const toml::array* array = objects->as_array();
     if (!array || !array->is_array_of_tables())
       top.fail("object", "must be an array of tables: write [[object]]");
-    std::set<std::string> names;
+    // The bodies' names, a stack's copies included: pairs, --set and the
+    // results name bodies, so no two may share one.
+    std::map<std::string, std::string> bodies;  // body name -> the object that makes it
     for (std::size_t i = 0; i < array->size(); ++i) {
       ObjectDesc o = read_object(*(*array)[i].as_table(), i, path, file, scene.perturb);
-      if (!names.insert(o.name).second)
-        throw InputError(file.file, o.source_line, "two objects are named '" + o.name + "'");
+      for (const std::string& body : body_names(o.name, o.stack)) {
+        const auto [it, added] = bodies.emplace(body, o.name);
+        if (added) continue;
+        if (it->second == o.name && body == o.name)
+          throw InputError(file.file, o.source_line, "two objects are named '" + o.name + "'");
+        throw InputError(file.file, o.source_line,
+                         "objects '" + it->second + "' and '" + o.name + "' both make a body named '" + body +
+                             "' (a stack of N > 1 makes bodies NAME_00 .. NAME_{N-1})");
+      }
       scene.world.objects.push_back(std::move(o));
     }
   }

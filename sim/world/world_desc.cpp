@@ -122,6 +122,13 @@ Body make_latent_body(const WorldDesc& desc, const ObjectDesc& object, std::shar
 
 }  // namespace
 
+std::vector<std::string> body_names(const std::string& object_name, const StackDesc& stack) {
+  if (stack.count <= 1) return {object_name};
+  std::vector<std::string> names;
+  for (int copy = 0; copy < stack.count; ++copy) names.push_back(fmt::format("{}_{:02d}", object_name, copy));
+  return names;
+}
+
 World build_world(const WorldDesc& desc) {
   World world;
   world.gravity_m_per_s2 = desc.gravity_m_per_s2;
@@ -175,11 +182,12 @@ World build_world(const WorldDesc& desc) {
     for (Vec3& p : scaled) p[axis] -= lowest;  // the lowest coordinate becomes exactly 0
     const double step = (highest - lowest) + object.stack.gap_m;
     Vec3 offset = object.position_m;
+    const std::vector<std::string> names = body_names(object.name, object.stack);
     for (int copy = 0; copy < object.stack.count; ++copy) {
       std::vector<Vec3> x(scaled);
       const Vec3 shift = copy % 2 ? Vec3(offset + object.stack.stagger_m) : offset;
       for (Vec3& p : x) p += shift;
-      world.bodies.push_back(make_body(fmt::format("{}_{:02d}", object.name, copy), object, mesh, std::move(x)));
+      world.bodies.push_back(make_body(names[static_cast<std::size_t>(copy)], object, mesh, std::move(x)));
       offset[axis] += step;
     }
   }

@@ -36,6 +36,10 @@ struct StackDesc {
   Vec3 stagger_m = Vec3::Zero();
 };
 
+/// The names of the bodies an object becomes: its own name, or with a stack
+/// of count > 1 NAME_00, NAME_01, ... (two digits at least).
+std::vector<std::string> body_names(const std::string& object_name, const StackDesc& stack);
+
 struct ObjectDesc {
   std::string name;
   std::string mesh;                 ///< file path (relative to base_dir) or generator string
