@@ -94,6 +94,20 @@ class Context:
         reserved = min(0.5, (len(lines) * FOOTER_LINE_INCHES + 0.05) / height_in)
         fig.tight_layout(rect=(0, reserved, 1, 1))
 
+    def write_figure(self, name, write):
+        """Call write(path) with a temporary path beside figures/NAME (same extension, so matplotlib picks the
+        format), then rename it into place: an interrupted report leaves no half-written figure."""
+        final = os.path.join(self.fig_dir, name)
+        stem, ext = os.path.splitext(name)
+        tmp = os.path.join(self.fig_dir, f".{stem}.tmp{ext}")
+        try:
+            write(tmp)
+            os.replace(tmp, final)
+        finally:
+            if os.path.exists(tmp):
+                os.remove(tmp)
+        return final
+
     def save(self, fig, stem, title, caption, runs, repeats=statistics.MEDIANS):
         """Sign fig, write it as PNG and SVG, and return its Section. The caption gains how many runs each
         configuration rests on, what the figure draws for repeats (`repeats`) and the jitter the seeds drew."""
@@ -102,7 +116,7 @@ class Context:
         caption = f"{caption} {note}".strip() if note else caption
         self.sign(fig, title, runs)
         for ext in ("png", "svg"):
-            fig.savefig(os.path.join(self.fig_dir, f"{stem}.{ext}"), dpi=110)
+            self.write_figure(f"{stem}.{ext}", lambda path: fig.savefig(path, dpi=110))
         plt.close(fig)
         return Section(title, caption, runs, image=f"figures/{stem}.png", vector=f"figures/{stem}.svg")
 

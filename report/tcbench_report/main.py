@@ -48,15 +48,20 @@ def main(argv):
         return 0 if len(argv) == 2 else 2
     root = argv[1]
     if not os.path.isdir(root):
-        print(f"tcbench report: {root}: no such directory", file=sys.stderr)
+        why = "not a directory" if os.path.exists(root) else "no such directory"
+        print(f"tcbench report: {root}: {why}", file=sys.stderr)
         return 2
+    out = os.path.join(root, "report")
+    for folder in (out, os.path.join(out, "figures")):
+        if os.path.exists(folder) and not os.path.isdir(folder):
+            print(f"tcbench report: {folder}: is a file, where the report writes a folder", file=sys.stderr)
+            return 2
     results = loader.load(root)
     for path, why in results.skipped:
         print(f"tcbench report: skipped {path}: {why}", file=sys.stderr)
     if not results.runs:
         print(f"tcbench report: {root}: no complete run.json beneath it", file=sys.stderr)
         return 2
-    out = os.path.join(root, "report")
     ctx = Context(results, out)
     sections, notes = draw_all(ctx)
     outcomes = claims.judge(ctx)

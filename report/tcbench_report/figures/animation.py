@@ -90,8 +90,8 @@ def animate(ctx, scene, runs, note=""):
         return dots
 
     name = f"{scene}.gif"
-    FuncAnimation(fig, show, frames=count, blit=False).save(os.path.join(ctx.fig_dir, name),
-                                                            writer=PillowWriter(fps=FPS))
+    animation = FuncAnimation(fig, show, frames=count, blit=False)
+    ctx.write_figure(name, lambda path: animation.save(path, writer=PillowWriter(fps=FPS)))
     plt.close(fig)
     return Section(title, f"Side view of {', '.join(r.label() for r in runs)}.{note}", list(runs),
                    image=f"figures/{name}")

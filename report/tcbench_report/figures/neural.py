@@ -112,7 +112,7 @@ def draw(ctx, runs):
                               f"{meta.get('machine', {}).get('cpu', '?')}.", fontsize=6, color="0.35")
         fig.tight_layout(rect=(0, 0.03, 1, 1))
         for ext in ("png", "svg"):
-            fig.savefig(f"{ctx.fig_dir}/{stem}.{ext}", dpi=110)
+            ctx.write_figure(f"{stem}.{ext}", lambda path: fig.savefig(path, dpi=110))
         plt.close(fig)
         sections.append(Section(title, caption, [], image=f"figures/{stem}.png", vector=f"figures/{stem}.svg"))
     return sections

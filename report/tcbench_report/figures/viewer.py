@@ -49,8 +49,7 @@ def draw(ctx, runs):
     source = os.path.join(ctx.results.root, "viewer", record["screenshot"])
     if not os.path.isfile(source):
         return ctx.missing(TITLE, f"{source} is missing. {listing}".strip())
-    target = os.path.join(ctx.fig_dir, "viewer_" + record["screenshot"])
-    shutil.copyfile(source, target)
+    target = ctx.write_figure("viewer_" + record["screenshot"], lambda path: shutil.copyfile(source, path))
     command = "tcbench view " + " ".join(record.get("runs", []))
     caption = (f"The recorded frame at or before step {record.get('step')} of each run, as the viewer shows it: "
                "colliding points coloured by the oracle's verdict (green: the method and the oracle, red: the "
