@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "sim/io/atomic_file.hpp"
 #include "sim/mesh/curve_numbering.hpp"
 
@@ -18,15 +20,26 @@ std::vector<ColumnSpec> with_step_columns(const std::vector<ColumnSpec>& columns
 // What an earlier run left in `dir` that this one may not overwrite: a run
 // without --record or --trajectory writes no frames, replay or trajectory,
 // and those of the earlier run would then sit beside the new run.json, read
-// as this run's by `--reference` and `tcbench view`. run.json goes first, so
-// the directory reads as incomplete until finish(). Only the files a run
-// writes are removed (a sweep's log.txt beside them is the sweep's).
+// as this run's by `--reference` and `tcbench view`. Only in a directory that
+// holds a run's file (not a folder of the user's that --out happens to name),
+// and only the files a run writes: run.json first, so the directory reads as
+// incomplete until finish(); the frames one by one, their folder only once
+// empty. A sweep's log.txt and a live session's probe_path.csv (an input of
+// the runs that replay it) stay.
 void remove_earlier_run(const std::filesystem::path& dir) {
   namespace fs = std::filesystem;
-  for (const char* name : {"run.json", "steps.csv", "frames.pvd", "trajectory.bin", "replay.json", "replay.bin",
-                           "probe_path.csv"})
-    fs::remove(dir / name);
-  fs::remove_all(dir / "frames");
+  const auto files = {"run.json", "steps.csv", "frames.pvd", "trajectory.bin", "replay.json", "replay.bin"};
+  if (std::none_of(files.begin(), files.end(), [&](const char* name) { return fs::exists(dir / name); })) return;
+  for (const char* name : files) fs::remove(dir / name);
+  const fs::path frames = dir / "frames";
+  if (!fs::is_directory(frames)) return;
+  std::vector<fs::path> earlier;
+  for (const fs::directory_entry& e : fs::directory_iterator(frames)) {
+    const std::string name = e.path().filename().string();
+    if (e.is_regular_file() && name.rfind("frame_", 0) == 0 && e.path().extension() == ".vtu") earlier.push_back(e.path());
+  }
+  for (const fs::path& f : earlier) fs::remove(f);
+  if (fs::is_empty(frames)) fs::remove(frames);
 }
 
 }  // namespace

@@ -21,7 +21,7 @@ namespace tcb {
 
 class RunRecord {
  public:
-  /// Creates the directory, removes the files an earlier run left in it
+  /// Creates the directory, removes the files an earlier run wrote there
   /// (run.json first; see remove_earlier_run), and starts steps.csv with the columns step,
   /// time_s and then `columns`. A VTU frame is written every `frame_every`
   /// steps (0: none), the first one of the initial state right away.
