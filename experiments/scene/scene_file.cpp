@@ -356,19 +356,24 @@ SceneDesc parse_scene(const std::string& text, const std::filesystem::path& path
     const toml::array* array = objects->as_array();
     if (!array || !array->is_array_of_tables())
       top.fail("object", "must be an array of tables: write [[object]]");
-    // The bodies' names, a stack's copies included: pairs, --set and the
-    // results name bodies, so no two may share one.
-    std::map<std::string, std::string> bodies;  // body name -> the object that makes it
+    // Objects' and bodies' names share one namespace: --set and [perturb]
+    // select objects by name, pairs name bodies or the object a stack was
+    // made from, and the results name bodies, so no name may mean two things.
+    std::map<std::string, std::string> taken;  // name -> what it names
     for (std::size_t i = 0; i < array->size(); ++i) {
       ObjectDesc o = read_object(*(*array)[i].as_table(), i, path, file, scene.perturb);
-      for (const std::string& body : body_names(o.name, o.stack)) {
-        const auto [it, added] = bodies.emplace(body, o.name);
+      std::vector<std::pair<std::string, std::string>> names = {{o.name, "object '" + o.name + "'"}};
+      if (o.stack.count > 1)
+        for (const std::string& body : body_names(o.name, o.stack))
+          names.emplace_back(body, "a body of the stack '" + o.name + "'");
+      for (const auto& [name, what] : names) {
+        const auto [it, added] = taken.emplace(name, what);
         if (added) continue;
-        if (it->second == o.name && body == o.name)
+        if (it->second == what)
           throw InputError(file.file, o.source_line, "two objects are named '" + o.name + "'");
         throw InputError(file.file, o.source_line,
-                         "objects '" + it->second + "' and '" + o.name + "' both make a body named '" + body +
-                             "' (a stack of N > 1 makes bodies NAME_00 .. NAME_{N-1})");
+                         "the name '" + name + "' is both " + it->second + " and " + what +
+                             " (a stack of N > 1 makes bodies NAME_00 .. NAME_{N-1}; all names must differ)");
       }
       scene.world.objects.push_back(std::move(o));
     }
