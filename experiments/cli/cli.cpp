@@ -48,7 +48,14 @@ int run_cli(int argc, const char* const* argv) {
   // input is said: one line, with where to read more.
   const auto parse_failure = [&](const CLI::ParseError& e) {
     if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e);
-    const std::string help = argc >= 2 && argv[1][0] != '-' ? "tcbench " + std::string(argv[1]) + " --help" : "tcbench --help";
+    std::string help = "tcbench";  // the chain of (sub)commands parsed when it failed: "tcbench mesh info"
+    for (const CLI::App* at = &app;;) {
+      const std::vector<CLI::App*> subs = at->get_subcommands();
+      if (subs.empty()) break;
+      at = subs.front();
+      help += " " + at->get_name();
+    }
+    help += " --help";
     std::cerr << "tcbench: error: " << e.what() << " (" << help << ")\n";
     return 2;
   };

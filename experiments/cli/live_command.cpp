@@ -58,7 +58,7 @@ class LiveCommand final : public Command {
     app->add_option("--probe", m_probe, "The driven object the mouse moves (default: the first one)");
     app->add_option("--set", m_options.overrides, "Override a scene key, e.g. --set object.cow.material.youngs_modulus=2e5");
     app->add_option("--seconds", m_seconds, "Stop after this much simulated time (default 600 s)")
-        ->check(whole_number(1, 86400));
+        ->transform(whole_number(1, 86400));
     app->add_option("--out", m_out, "Result directory (default: results/live/SCENE-METHOD)")->check(non_empty_path());
     app->add_option("--port", m_port, "Port on 127.0.0.1; 0 picks a free one")->capture_default_str();
     app->add_option("--viewer", m_viewer, "The viewer page's directory (default: viewer/ in the source tree)");

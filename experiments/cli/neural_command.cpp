@@ -53,17 +53,17 @@ class NeuralCommand final : public Command {
     m_experiment->add_flag("--quick", m_quick, "Fewer seeds, labels and codes (a smoke run of about a minute)");
     m_experiment->add_option("--preset", m_presets, "Latent families to run (repeatable; default: finger_small and finger_large, --quick: finger_small)");
     m_experiment->add_option("--seeds", m_seed_count, "Training seeds 1..N (default: 3, --quick 2)")
-        ->check(whole_number(1, 100));
+        ->transform(whole_number(1, 100));
     m_experiment->add_option("--rounds", m_rounds, "Learning rounds after the bootstrap (default 8, --quick 4)")
-        ->check(whole_number(0, 10000));
+        ->transform(whole_number(0, 10000));
     m_experiment->add_option("--labels-per-round", m_labels_per_round, "Labels each round adds (default 100, --quick 50)")
-        ->check(whole_number(1, 1000000));
+        ->transform(whole_number(1, 1000000));
     m_experiment->add_option("--steps-per-round", m_steps_per_round, "Adam steps each round (default 500, --quick 200)")
-        ->check(whole_number(0, 100000000));
+        ->transform(whole_number(0, 100000000));
     m_experiment->add_option("--test-codes", m_test_codes, "Held-out codes (default 2000, --quick 600)")
-        ->check(whole_number(1, 10000000));
+        ->transform(whole_number(1, 10000000));
     m_experiment->add_option("--jobs", m_jobs, "Worker threads (the results do not depend on it)")
-        ->check(whole_number(1, 64))
+        ->transform(whole_number(1, 64))
         ->capture_default_str();
     m_experiment->add_flag("--quiet", m_quiet, "No progress lines");
 
@@ -78,12 +78,12 @@ class NeuralCommand final : public Command {
     m_train->add_option("--strategy", m_strategy, "active (samples pulled to the decision boundary) or supervised (uniform)")
         ->check(CLI::IsMember({"active", "supervised"}))
         ->capture_default_str();
-    m_train->add_option("--seed", m_train_seed, "Training seed")->check(whole_number(0, 1000000000))->capture_default_str();
-    m_train->add_option("--rounds", m_rounds, "Learning rounds after the bootstrap (default 8)")->check(whole_number(0, 10000));
+    m_train->add_option("--seed", m_train_seed, "Training seed")->transform(whole_number(0, 1000000000))->capture_default_str();
+    m_train->add_option("--rounds", m_rounds, "Learning rounds after the bootstrap (default 8)")->transform(whole_number(0, 10000));
     m_train->add_option("--labels-per-round", m_labels_per_round, "Labels each round adds (default 100)")
-        ->check(whole_number(1, 1000000));
+        ->transform(whole_number(1, 1000000));
     m_train->add_option("--steps-per-round", m_steps_per_round, "Adam steps each round (default 500)")
-        ->check(whole_number(0, 100000000));
+        ->transform(whole_number(0, 100000000));
     m_train->add_flag("--quiet", m_quiet, "No progress lines");
 
     m_gen = app->add_subcommand("gen", "Write uniformly drawn codes with their exact labels (a data set for your own detector)");
@@ -93,8 +93,8 @@ class NeuralCommand final : public Command {
         "Exit status: 0 written; 2 bad input.");
     m_gen->add_option("--out", m_gen_out, "The CSV file to write")->check(non_empty_path())->required();
     m_gen->add_option("--preset", m_gen_preset, "Latent family: finger_small or finger_large")->capture_default_str();
-    m_gen->add_option("--codes", m_gen_codes, "How many codes")->check(whole_number(1, 100000000))->capture_default_str();
-    m_gen->add_option("--seed", m_gen_seed, "Seed of the draw")->check(whole_number(0, 1000000000))->capture_default_str();
+    m_gen->add_option("--codes", m_gen_codes, "How many codes")->transform(whole_number(1, 100000000))->capture_default_str();
+    m_gen->add_option("--seed", m_gen_seed, "Seed of the draw")->transform(whole_number(0, 1000000000))->capture_default_str();
 
     m_alm = app->add_subcommand("alm", "Resolve the colliding frames of a latent path with the ALM, under a work budget per step");
     m_alm->footer(
@@ -111,10 +111,10 @@ class NeuralCommand final : public Command {
     m_alm->add_option("--out", m_alm_out, "The CSV file to write")->check(non_empty_path())->required();
     m_alm->add_option("--preset", m_alm_preset, "The model's latent family")->capture_default_str();
     m_alm->add_option("--margin", m_alm_margin, "Constraint margin in logits: logit + margin <= 0")
-        ->check(decimal_number(-100.0, 100.0))
+        ->transform(decimal_number(-100.0, 100.0))
         ->capture_default_str();
     m_alm->add_option("--budget-work", m_alm_work, "Network evaluations per step (0: unlimited, one step)")
-        ->check(whole_number(0, 1000000000))
+        ->transform(whole_number(0, 1000000000))
         ->capture_default_str();
   }
 

@@ -11,9 +11,14 @@ namespace tcb::cli {
 
 /// A whole number in [min, max], read from the text as typed (no detour
 /// through double): "'1e20' is not a whole number; allowed: 1 .. 1099511627776".
+/// It rewrites the text as the number it checked ("010" becomes "10", which
+/// CLI11 would have read as octal 8), so give it with ->transform(), not
+/// ->check(), whose validators see a copy.
 CLI::Validator whole_number(std::int64_t min, std::int64_t max);
 
-/// A finite decimal number in [min, max]; "nan" and "inf" are refused.
+/// A finite number in [min, max], as strtod reads it; "nan", "inf", leading
+/// blanks and values that over- or underflow are refused. Rewrites the text
+/// as the double it checked (->transform(), as above).
 CLI::Validator decimal_number(double min, double max);
 
 /// A path that is not empty: `--out ""` would otherwise write into the

@@ -55,7 +55,7 @@ class RunCommand final : public Command {
         ->capture_default_str();
     app->add_option("--budget-label", m_options.budget_label,
                     "How the budget was asked for, recorded in run.json (sweeps pass e.g. full/3)");
-    app->add_option("--steps", m_steps, "Number of steps (default: the scene's)")->check(whole_number(0, std::int64_t{1} << 40));
+    app->add_option("--steps", m_steps, "Number of steps (default: the scene's)")->transform(whole_number(0, std::int64_t{1} << 40));
     app->add_option("--seed", m_seed, "Seed (a whole number, 0 .. 2^64-1): draws the scene's [perturb] offsets")
         ->capture_default_str();
     app->add_option("--set", m_options.overrides,
@@ -64,26 +64,26 @@ class RunCommand final : public Command {
     app->add_option("--record", m_options.record_every,
                     "Write a ParaView frame (DIR/frames/*.vtu, DIR/frames.pvd) and a replay frame (DIR/replay.bin, "
                     "DIR/replay.json) every N steps")
-        ->check(whole_number(1, std::int64_t{1} << 30));
+        ->transform(whole_number(1, std::int64_t{1} << 30));
     app->add_flag("--record-debug", m_options.record_debug,
                   "With --record: replay frames also hold every tet's box and the hash grid cells they occupy");
     app->add_option("--trajectory", m_options.trajectory_every,
                     "Write every body's state to DIR/trajectory.bin every N steps (float32), for runs that "
                     "take this one as --reference")
-        ->check(whole_number(1, std::int64_t{1} << 30));
+        ->transform(whole_number(1, std::int64_t{1} << 30));
     app->add_option("--reference", m_options.reference_dir,
                     "A reference run's directory (made with --trajectory): divergence from it, per recorded step "
                     "(summary: divergence)");
     app->add_option("--out", m_out, "Result directory (default: results/runs/SCENE-METHOD)")->check(non_empty_path());
     app->add_option("--pin", m_pin,
                     "Pin the handling thread to this CPU (recorded in run.json; exit 2 when not allowed here)")
-        ->check(whole_number(0, 4095));
+        ->transform(whole_number(0, 4095));
     app->add_option("--threads", m_threads,
                     "Threads for the collision cycle's tet and surface hashing, point queries, border depths and "
                     "forces (the scene's collision.threads; default 1, "
                     "which keeps wall-clock budgets on one core; the results are the same for every count; "
                     "above 1, run.json records the cores' handover ratio, which the times depend on)")
-        ->check(whole_number(1, 64));
+        ->transform(whole_number(1, 64));
     app->add_flag("--quiet", m_quiet, "Print nothing but errors");
   }
 

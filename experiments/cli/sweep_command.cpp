@@ -40,12 +40,12 @@ class SweepCommand final : public Command {
     app->add_option("SWEEP", m_file, "The sweep file (.toml); see experiments/sweeps/")->required();
     app->add_option("--out", m_out, "Result directory")->check(non_empty_path())->required();
     app->add_option("--jobs", m_options.jobs, "Runs at once (wall-clock budgets are only meaningful with 1)")
-        ->check(whole_number(1, 1024))
+        ->transform(whole_number(1, 1024))
         ->capture_default_str();
     app->add_option("--shard", m_shard, "Run only shard I of N (0-based, whole scene/seed/set groups)");
     app->add_option("--slurm", m_slurm_shards,
                     "Write DIR/sweep.sbatch, a Slurm job array of N shards (each --resume, --jobs CPUs), and run nothing")
-        ->check(whole_number(1, 100000));
+        ->transform(whole_number(1, 100000));
     app->add_flag("--resume", m_options.resume, "Skip runs whose run.json is complete; redo the rest");
     app->add_option("--pin", m_pin,
                     "Pin each job's handling thread to its own CPU: auto, or a list like 2,3 (at least --jobs CPUs)");

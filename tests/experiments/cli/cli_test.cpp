@@ -120,13 +120,26 @@ TEST_CASE("cli: a run into an earlier run's directory leaves none of the earlier
   for (const char* name : {"replay.json", "replay.bin", "frames.pvd", "frames", "trajectory.bin"})
     REQUIRE(fs::exists(dir / name));
   tcb::write_file_atomically(dir / "log.txt", "a sweep's log of this run\n");
+  tcb::write_file_atomically(dir / "probe_path.csv", "time_s,x_m,y_m,z_m\n");  // live's, an input of replays
   REQUIRE(cli({"run", "cube_drop", "--steps", "2", "--out", dir.string(), "--quiet"}).code == 0);
   for (const char* name : {"replay.json", "replay.bin", "frames.pvd", "frames", "trajectory.bin"}) {
     INFO(name);
     CHECK_FALSE(fs::exists(dir / name));
   }
   CHECK(nlohmann::json::parse(tcb::read_file(dir / "run.json"))["steps"] == 2);
-  CHECK(fs::exists(dir / "log.txt"));  // not a run's file
+  CHECK(fs::exists(dir / "log.txt"));  // not a run's files
+  CHECK(fs::exists(dir / "probe_path.csv"));
+  // A folder that holds no run's file is not cleaned: its frames/ is the user's.
+  const fs::path mine = dir / "mine";
+  fs::create_directories(mine / "frames");
+  tcb::write_file_atomically(mine / "frames" / "frame_000001.vtu", "the user's\n");
+  REQUIRE(cli({"run", "cube_drop", "--steps", "2", "--out", mine.string(), "--quiet"}).code == 0);
+  CHECK(fs::exists(mine / "frames" / "frame_000001.vtu"));
+  // In a run's folder only the frames go, not what else the folder holds.
+  tcb::write_file_atomically(mine / "frames" / "notes.txt", "kept\n");
+  REQUIRE(cli({"run", "cube_drop", "--steps", "2", "--out", mine.string(), "--quiet"}).code == 0);
+  CHECK_FALSE(fs::exists(mine / "frames" / "frame_000001.vtu"));
+  CHECK(fs::exists(mine / "frames" / "notes.txt"));
   // Nor may a run take its own directory as the reference it replaces.
   REQUIRE(cli({"run", "cube_drop", "--steps", "2", "--trajectory", "1", "--out", dir.string(), "--quiet"}).code == 0);
   const Result same = cli({"run", "cube_drop", "--steps", "2", "--reference", dir.string(), "--out", dir.string()});
@@ -286,4 +299,17 @@ TEST_CASE("cli: messages say what was typed wrong and what is allowed (issue 15,
   // A usage error points to the help of the command it was typed for.
   CHECK_THAT(cli({"view", "some_dir", "--port", "abc"}).err,
              Catch::Matchers::StartsWith("tcbench: error: ") && Catch::Matchers::EndsWith("(tcbench view --help)\n"));
+  CHECK_THAT(cli({"mesh", "info", "--bogus"}).err, Catch::Matchers::EndsWith("(tcbench mesh info --help)\n"));
+  CHECK_THAT(cli({"--bogus"}).err, Catch::Matchers::EndsWith("(tcbench --help)\n"));
+}
+
+TEST_CASE("cli: a whole number is stored as it was checked, never read as octal", "[cli]") {
+  // CLI11 converts "010" with base 0, as octal 8; the check passed it as 10.
+  const fs::path dir = fresh_dir("octal");
+  REQUIRE(cli({"run", "cube_drop", "--steps", "010", "--seed", "010", "--out", dir.string(), "--quiet"}).code == 0);
+  const auto run = nlohmann::json::parse(tcb::read_file(dir / "run.json"));
+  CHECK(run["steps"] == 10);
+  CHECK(cli({"run", "cube_drop", "--steps", "08", "--out", (dir / "b").string(), "--quiet"}).code == 0);
+  CHECK(nlohmann::json::parse(tcb::read_file(dir / "b" / "run.json"))["steps"] == 8);
+  fs::remove_all(dir);
 }
