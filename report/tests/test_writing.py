@@ -60,6 +60,45 @@ class WriteFigureTest(unittest.TestCase):
             self.assertEqual(f.read(), "old")
 
 
+class FiguresGoThroughWriteFigureTest(unittest.TestCase):
+    """The figures' writers call write_figure, so none writes straight to its final name."""
+
+    def setUp(self):
+        self.root = tempfile.mkdtemp()
+        self.ctx = Context(Results(self.root), os.path.join(self.root, "report"))
+        self.written = []
+        write_figure = self.ctx.write_figure
+
+        def recording(name, write):
+            self.written.append(name)
+            return write_figure(name, write)
+
+        self.ctx.write_figure = recording
+
+    def tearDown(self):
+        shutil.rmtree(self.root)
+
+    def test_save_writes_both_formats_through_it(self):
+        import matplotlib.pyplot as plt
+        self.ctx.save(plt.figure(), "x", "Title", "caption", [])
+        self.assertEqual(self.written, ["x.png", "x.svg"])
+        self.assertEqual(sorted(os.listdir(self.ctx.fig_dir)), ["x.png", "x.svg"])
+
+    def test_no_figure_module_writes_a_figure_itself(self):
+        # The modules that write files: each must name write_figure and call no writer on a final path.
+        figures = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tcbench_report", "figures")
+        for name in sorted(os.listdir(figures)):
+            if not name.endswith(".py"):
+                continue
+            with open(os.path.join(figures, name)) as f:
+                text = f.read()
+            with self.subTest(module=name):
+                for writer in ("savefig(", ".save(", "copyfile(", "copy("):
+                    for line in text.splitlines():
+                        if writer in line and "write_figure" not in line and "ctx.save(" not in line:
+                            self.fail(f"{name}: '{line.strip()}' writes a figure without write_figure")
+
+
 class BadOutputPathTest(unittest.TestCase):
     def setUp(self):
         self.root = tempfile.mkdtemp()
