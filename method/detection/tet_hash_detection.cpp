@@ -22,12 +22,10 @@ bool incident(const Tet& t, std::int32_t v) { return t[0] == v || t[1] == v || t
 // test, the same comparisons of the same differences as the Eigen array form
 // it replaced (p < lo - grow or p > hi + grow in any coordinate; a NaN never
 // compares, so a NaN margin rejects nothing, as before). Written per
-// coordinate, each difference formed only when the comparisons before it
-// passed, because the query runs it for every entry of a bucket: under
-// AddressSanitizer the array form's temporaries, and in an earlier version
-// of this function its six loads made before any comparison, took most of
-// the detection tests' time (a test of every point against a one-bucket
-// table: 129 s with the array form, 62 s with six eager loads, 16 s so).
+// coordinate because the query runs it for every entry of a bucket: under
+// AddressSanitizer the array form's temporaries, poisoned and cleared on
+// every call, took most of the detection tests' time (the test of every
+// point against a one-bucket table: 129 s with the array form, 55 s so).
 bool outside_grown_box(const Vec3& p, const Vec3& lo, const Vec3& hi, const Vec3& grow) {
   return p.x() < lo.x() - grow.x() || p.y() < lo.y() - grow.y() || p.z() < lo.z() - grow.z() ||
          p.x() > hi.x() + grow.x() || p.y() > hi.y() + grow.y() || p.z() > hi.z() + grow.z();
